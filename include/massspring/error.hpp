@@ -1,0 +1,18 @@
+#pragma once
+/// @file
+/// @brief massspring::Error, the one exception type the library throws.
+
+#include <stdexcept>
+#include <string>
+
+namespace massspring {
+
+/// @brief Raised for invalid input: the message names the item (point, spring, pin, file and line)
+/// and says what was expected. Numerical failure during a step is not an exception: it is reported
+/// in the step's StepReport.
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& what) : std::runtime_error(what) {}
+};
+
+}  // namespace massspring

@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// @brief StepReport: what one integrator step did, and whether it succeeded.
+
+#include <limits>
+
+namespace massspring {
+
+/// @brief The outcome of one step. A step that fails (`finite == false`) leaves the system's
+/// positions and velocities exactly as they were before the step.
+struct StepReport {
+  /// @brief Solver iterations done in this step (local-global: global solves).
+  int iterations = 0;
+  /// @brief Relative energy decrease of the last iteration, (E_{k-1} - E_k) / (E_0 - E_k), where
+  /// E_0 is the energy of the starting iterate; 0 when the energy did not decrease at all.
+  /// NaN when the integrator does not minimise an energy.
+  double relative_decrease = std::numeric_limits<double>::quiet_NaN();
+  /// @brief The objective at the final iterate [J] (local-global: E of DESIGN.md, up to a constant
+  /// that does not depend on the iterate). NaN when the integrator has none.
+  double energy = std::numeric_limits<double>::quiet_NaN();
+  /// @brief True when the step stopped because its tolerance was met (never when the tolerance is
+  /// 0).
+  bool converged = false;
+  /// @brief True when every new position and velocity is finite. When false, nothing was changed.
+  bool finite = true;
+  /// @brief True when this step had to factorise again because the model changed since the last.
+  bool refactorized = false;
+
+  /// @brief A step succeeded when its result is finite.
+  [[nodiscard]] bool ok() const { return finite; }
+};
+
+}  // namespace massspring

@@ -1,0 +1,5 @@
+#pragma once
+/// @file
+/// @brief Scene files: the assignment's JSON+OBJ scenes and OBJ frames. Needs nlohmann_json
+/// (CMake target massspring::io). The core (massspring/massspring.hpp) never includes this.
+#include "massspring/massspring.hpp"

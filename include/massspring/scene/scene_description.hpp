@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// @brief SceneDescription: a mesh, its pins, stiffness and mass, as the assignment's JSON+OBJ
+/// scenes hold them. make_system() turns it into a MassSpringSystem.
+
+#include <optional>
+#include <vector>
+
+#include "massspring/types.hpp"
+
+namespace massspring {
+
+/// @brief The content of a JSON+OBJ scene (see docs/scenes.md).
+///
+/// Springs are derived, not listed: every pair of vertices of each face (so a quad gives its four
+/// sides and both diagonals) plus every entry of `edges`; a pair that occurs twice is one spring.
+/// Rest lengths are the distances between the vertices.
+template <class Scalar>
+struct SceneDescription {
+  /// @brief #V by 3 vertex positions [m].
+  Points<Scalar> vertices = Points<Scalar>(0, 3);
+  /// @brief Polygons (3 or more vertex indices each, 0-based). They carry springs and, when `mass`
+  /// is absent, the surface whose lumped Voronoi areas are the masses (density 1 kg/m^2).
+  std::vector<std::vector<int>> faces;
+  /// @brief Two-vertex springs (0-based), the OBJ's `f i j` lines.
+  Edges edges = Edges(0, 2);
+  /// @brief Pinned vertices (0-based; the JSON file holds them 1-based).
+  std::vector<int> pinned;
+  /// @brief Stiffness of every spring [N/m].
+  Scalar stiffness = 0;
+  /// @brief Mass of every vertex [kg]; when absent, the lumped Voronoi areas of the faces.
+  std::optional<Scalar> mass;
+};
+
+}  // namespace massspring

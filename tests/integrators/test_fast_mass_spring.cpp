@@ -1,0 +1,1 @@
+// Tests for fast_mass_spring: to be written.

@@ -1,0 +1,1 @@
+// Tests for json_scene: to be written.

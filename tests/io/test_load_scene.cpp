@@ -1,0 +1,1 @@
+// Tests for load_scene: to be written.

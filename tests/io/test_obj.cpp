@@ -1,0 +1,1 @@
+// Tests for obj: to be written.

@@ -1,0 +1,1 @@
+// Tests for face_springs: to be written.

@@ -1,0 +1,1 @@
+// Tests for generators: to be written.

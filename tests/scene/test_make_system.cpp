@@ -1,0 +1,1 @@
+// Tests for make_system: to be written.

@@ -1,0 +1,1 @@
+// Tests for voronoi_masses: to be written.

@@ -1,0 +1,1 @@
+// Tests for mass_spring_system: to be written.
