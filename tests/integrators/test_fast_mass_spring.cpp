@@ -1,1 +1,596 @@
-// Tests for fast_mass_spring: to be written.
+// integrators/fast_mass_spring.hpp: Q, energy descent, closed forms, pins, allocation, failure.
+#include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/scene/cloth.hpp>
+#include <massspring/scene/make_system.hpp>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <doctest/doctest.h>
+
+#include "support/alloc_counter.hpp"
+
+namespace {
+
+using massspring::Dense;
+using massspring::Edges;
+using massspring::Error;
+using massspring::FastMassSpring;
+using massspring::InitialGuess;
+using massspring::MassSpringSystem;
+using massspring::PinMode;
+using massspring::Sparse;
+template <class Scalar>
+using Points = massspring::Points<Scalar>;
+
+// A small cloth (quads with both diagonals, top corners pinned, Voronoi masses), its free points
+// nudged off the rest state so that every iteration has work to do.
+template <class System>
+System small_cloth(int columns = 7, int rows = 5, unsigned seed = 3) {
+  massspring::ClothOptions o;
+  o.columns = columns;
+  o.rows = rows;
+  o.width = 0.6;
+  o.height = 0.4;
+  o.stiffness = 200;
+  o.plane = massspring::ClothPlane::Horizontal;
+  System s = massspring::make_system<System>(massspring::make_cloth(o));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  Points<typename System::Scalar> x = s.positions();
+  for (int i = 0; i < s.num_points(); ++i)
+    if (!s.is_pinned(i))
+      for (int c = 0; c < 3; ++c) x(i, c) += typename System::Scalar(u(rng));
+  s.set_positions(x);
+  return s;
+}
+
+// A chain of n points along x, both ends pinned, m = 1, k = 500 (the assignment's chain).
+template <class System>
+System chain(int n = 10) {
+  using Scalar = typename System::Scalar;
+  Points<Scalar> v(n, 3);
+  Edges e(n - 1, 2);
+  for (int i = 0; i < n; ++i) v.row(i) << Scalar(i) / Scalar(n - 1), 0, 0;
+  for (int i = 0; i + 1 < n; ++i) e.row(i) << i, i + 1;
+  System s(v, e, Scalar(1), Scalar(500));
+  s.pin(0);
+  s.pin(n - 1);
+  return s;
+}
+
+// Everything a step's objective depends on, frozen at the start of the step.
+struct StepProblem {
+  Points<double> x0, v0, targets;
+  std::vector<int> pinned;
+  Eigen::VectorXd m, k, r;
+  Edges springs;
+  double dt;
+  Eigen::RowVector3d force, gravity;
+  PinMode pins;
+  double w;
+
+  template <class System, class Options>
+  StepProblem(const System& s, const Options& o, double step)
+      : x0(s.positions().template cast<double>()),
+        v0(s.velocities().template cast<double>()),
+        targets(s.pin_targets().template cast<double>()),
+        pinned(s.pinned()),
+        m(s.masses().template cast<double>()),
+        k(s.stiffness().template cast<double>()),
+        r(s.rest_lengths().template cast<double>()),
+        springs(s.springs()),
+        dt(step),
+        force(o.external_force.template cast<double>().transpose()),
+        gravity(o.gravity.template cast<double>().transpose()),
+        pins(o.pins),
+        w(double(o.penalty_weight)) {}
+
+  bool held(int i) const {
+    return pins == PinMode::Exact && std::find(pinned.begin(), pinned.end(), i) != pinned.end();
+  }
+
+  // E(X) of DESIGN.md, written out term by term (independent of the solver's bookkeeping).
+  double energy(const Points<double>& x) const {
+    double e = 0;
+    for (int s = 0; s < springs.rows(); ++s) {
+      const double l = (x.row(springs(s, 0)) - x.row(springs(s, 1))).norm();
+      e += 0.5 * k(s) * (l - r(s)) * (l - r(s));
+    }
+    for (int i = 0; i < x.rows(); ++i) {
+      if (held(i)) continue;
+      const Eigen::RowVector3d y = x0.row(i) + dt * v0.row(i);
+      e += m(i) / (2 * dt * dt) * (x.row(i) - y).squaredNorm();
+      e -= x.row(i).dot(force + m(i) * gravity);
+    }
+    if (pins == PinMode::Penalty)
+      for (std::size_t p = 0; p < pinned.size(); ++p)
+        e += 0.5 * w * (x.row(pinned[p]) - targets.row(Eigen::Index(p))).squaredNorm();
+    return e;
+  }
+
+  // dE/dX at the free points (rows of held points zero).
+  Points<double> gradient(const Points<double>& x) const {
+    Points<double> g = Points<double>::Zero(x.rows(), 3);
+    for (int s = 0; s < springs.rows(); ++s) {
+      const Eigen::RowVector3d d = x.row(springs(s, 0)) - x.row(springs(s, 1));
+      const double l = d.norm();
+      const Eigen::RowVector3d f = k(s) * (l - r(s)) * d / l;
+      g.row(springs(s, 0)) += f;
+      g.row(springs(s, 1)) -= f;
+    }
+    for (int i = 0; i < x.rows(); ++i) {
+      const Eigen::RowVector3d y = x0.row(i) + dt * v0.row(i);
+      g.row(i) += m(i) / (dt * dt) * (x.row(i) - y) - (force + m(i) * gravity);
+    }
+    if (pins == PinMode::Penalty)
+      for (std::size_t p = 0; p < pinned.size(); ++p)
+        g.row(pinned[p]) += w * (x.row(pinned[p]) - targets.row(Eigen::Index(p)));
+    for (int i = 0; i < x.rows(); ++i)
+      if (held(i)) g.row(i).setZero();
+    return g;
+  }
+};
+
+template <class Matrix>
+Eigen::MatrixXd dense(const Matrix& m) {
+  if constexpr (std::is_base_of_v<Eigen::SparseMatrixBase<Matrix>, Matrix>)
+    return Eigen::MatrixXd(m.template cast<double>());
+  else
+    return m.template cast<double>();
+}
+
+double relative_difference(const Points<double>& a, const Points<double>& b) {
+  return (a - b).norm() / b.norm();
+}
+
+}  // namespace
+
+#define MS_SYSTEM_TYPES                                                                      \
+  MassSpringSystem<double, Sparse>, MassSpringSystem<double, Dense>,                         \
+      MassSpringSystem<float, Sparse>, MassSpringSystem<float, Dense>
+#define MS_DOUBLE_SYSTEMS MassSpringSystem<double, Sparse>, MassSpringSystem<double, Dense>
+
+TEST_CASE_TEMPLATE("Q = A^T K A + M / dt^2 (+ w C^T C) is symmetric positive definite",
+                   System, MS_DOUBLE_SYSTEMS) {
+  const System s = small_cloth<System>(5, 4);
+  const double dt = 1.0 / 30;
+  // Independent: Q from the system's own A, K, M, C with sparse products.
+  const Eigen::SparseMatrix<double> a = dense(s.incidence()).sparseView();
+  const Eigen::SparseMatrix<double> k = dense(s.stiffness_matrix()).sparseView();
+  const Eigen::SparseMatrix<double> m = dense(s.mass_matrix()).sparseView();
+  const Eigen::SparseMatrix<double> c = dense(s.pin_selector()).sparseView();
+  const Eigen::MatrixXd base = Eigen::MatrixXd(a.transpose() * k * a) + Eigen::MatrixXd(m) / (dt * dt);
+
+  for (const PinMode mode : {PinMode::Penalty, PinMode::Exact}) {
+    CAPTURE(int(mode));
+    FastMassSpring<System> solver;
+    solver.options.pins = mode;
+    solver.options.penalty_weight = 1e4;  // moderate, so that the eigenvalue test is meaningful
+    solver.precompute(s, dt);
+    const Eigen::MatrixXd q = dense(solver.system_matrix());
+    Eigen::MatrixXd expected;
+    if (mode == PinMode::Penalty) {
+      expected = base + 1e4 * Eigen::MatrixXd(c.transpose() * c);
+    } else {
+      const auto& f = solver.free_points();
+      REQUIRE(int(f.size()) == s.num_points() - s.num_pinned());
+      expected.resize(Eigen::Index(f.size()), Eigen::Index(f.size()));
+      for (std::size_t i = 0; i < f.size(); ++i)
+        for (std::size_t j = 0; j < f.size(); ++j)
+          expected(Eigen::Index(i), Eigen::Index(j)) = base(f[i], f[j]);
+    }
+    REQUIRE(q.rows() == expected.rows());
+    CHECK((q - expected).norm() <= 1e-12 * expected.norm());
+    CHECK((q - q.transpose()).norm() == 0.0);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(q);
+    CHECK(eig.eigenvalues().minCoeff() > 0.0);
+  }
+}
+
+TEST_CASE_TEMPLATE("the energy never increases over local-global iterations", System,
+                   MS_SYSTEM_TYPES) {
+  using Scalar = typename System::Scalar;
+  const double dt = 1.0 / 30;
+  for (const PinMode mode : {PinMode::Exact, PinMode::Penalty}) {
+    if (std::is_same_v<Scalar, float> && mode == PinMode::Penalty) continue;  // see docs
+    CAPTURE(int(mode));
+    System s = small_cloth<System>();
+    FastMassSpring<System> solver;
+    solver.options.pins = mode;
+    solver.options.gravity = {0, Scalar(-9.8), 0};
+    solver.options.external_force = {Scalar(0.01), 0, 0};
+    solver.options.initial_guess = InitialGuess::Inertial;  // so that step 1 starts off balance
+    solver.precompute(s, Scalar(dt));
+    // Two steps first, so that the velocities are not zero.
+    solver.step(s);
+    solver.step(s);
+    const StepProblem problem(s, solver.options, dt);
+    const double tol = std::is_same_v<Scalar, float> ? 1e-5 : 1e-12;
+    double previous = std::numeric_limits<double>::infinity();
+    double offset = 0;
+    for (int k = 1; k <= 25; ++k) {
+      CAPTURE(k);
+      System copy = s;
+      solver.options.iterations = k;
+      const massspring::StepReport report = solver.step(copy);
+      REQUIRE(report.ok());
+      CHECK(report.iterations == k);
+      const double e = problem.energy(copy.positions().template cast<double>());
+      CHECK(e <= previous + tol * std::abs(e));
+      // The report's energy is E up to a constant (the held points' terms).
+      if (k == 1) offset = report.energy - e;
+      CHECK(report.energy - e == doctest::Approx(offset).epsilon(tol * 10).scale(std::abs(e)));
+      CHECK(report.relative_decrease >= 0.0);
+      CHECK(report.relative_decrease <= 1.0);
+      previous = e;
+    }
+  }
+}
+
+TEST_CASE_TEMPLATE("converged local-global solves the implicit Euler equations", System,
+                   MS_DOUBLE_SYSTEMS) {
+  const double dt = 1.0 / 30;
+  for (const PinMode mode : {PinMode::Exact, PinMode::Penalty}) {
+    CAPTURE(int(mode));
+    System s = small_cloth<System>();
+    FastMassSpring<System> solver;
+    solver.options.pins = mode;
+    solver.options.gravity = {0, -9.8, 0};
+    solver.options.iterations = 20000;  // linear convergence, slow when k dt^2 / m is large
+    solver.precompute(s, dt);
+    solver.step(s);
+    const StepProblem problem(s, solver.options, dt);
+    const massspring::StepReport report = solver.step(s);
+    REQUIRE(report.ok());
+    CHECK(report.iterations == 20000);
+    CHECK(report.relative_decrease <= 1e-12);
+    // Stationary point of E: M (X - Y) / dt^2 = F + spring forces at the free points.
+    const Points<double> x = s.positions();
+    const Points<double> g = problem.gradient(x);
+    double scale = 0;  // size of the inertial term, for a relative measure
+    for (int i = 0; i < x.rows(); ++i)
+      scale = std::max(scale, problem.m(i) / (dt * dt) * (x.row(i) - problem.x0.row(i)).norm());
+    double residual = 0;
+    for (int i = 0; i < x.rows(); ++i)
+      if (!s.is_pinned(i)) residual = std::max(residual, g.row(i).norm());
+    CHECK(residual <= 1e-10 * scale);
+  }
+}
+
+TEST_CASE("Dense and Sparse give the same trajectory") {
+  for (const PinMode mode : {PinMode::Exact, PinMode::Penalty}) {
+    CAPTURE(int(mode));
+    auto sparse = small_cloth<MassSpringSystem<double, Sparse>>();
+    auto dense_system = small_cloth<MassSpringSystem<double, Dense>>();
+    FastMassSpring<MassSpringSystem<double, Sparse>> a;
+    FastMassSpring<MassSpringSystem<double, Dense>> b;
+    for (auto* o : {&a.options}) {
+      o->pins = mode;
+      o->external_force = {0, -9.8 * 0.005, 0};
+    }
+    b.options.pins = mode;
+    b.options.external_force = a.options.external_force;
+    a.precompute(sparse, 1.0 / 30);
+    b.precompute(dense_system, 1.0 / 30);
+    for (int frame = 0; frame < 60; ++frame) {
+      REQUIRE(a.step(sparse).ok());
+      REQUIRE(b.step(dense_system).ok());
+    }
+    CHECK(relative_difference(dense_system.positions(), sparse.positions()) <= 1e-10);
+    CHECK(relative_difference(dense_system.velocities(), sparse.velocities()) <= 1e-10);
+    CHECK((sparse.positions() - small_cloth<MassSpringSystem<double>>().positions()).norm() >
+          0.01);  // it did move
+  }
+}
+
+TEST_CASE("float agrees with double on the chain") {
+  auto d = chain<MassSpringSystem<double>>();
+  auto f = chain<MassSpringSystem<float>>();
+  FastMassSpring<MassSpringSystem<double>> sd;
+  FastMassSpring<MassSpringSystem<float>> sf;
+  sd.options.external_force = {0, -9.8, 0};
+  sf.options.external_force = {0, -9.8f, 0};
+  sd.precompute(d, 1.0 / 30);
+  sf.precompute(f, 1.0f / 30);
+  for (int frame = 0; frame < 100; ++frame) {
+    REQUIRE(sd.step(d).ok());
+    REQUIRE(sf.step(f).ok());
+  }
+  CHECK(relative_difference(f.positions().cast<double>(), d.positions()) <= 1e-4);
+  CHECK(d.positions().col(1).minCoeff() < -0.05);  // it sagged
+}
+
+TEST_CASE_TEMPLATE("a single spring with one pinned end settles at 1 + 9.8 / 500", System,
+                   MS_SYSTEM_TYPES) {
+  using Scalar = typename System::Scalar;
+  // The assignment's single-spring-horizontal scene: (0,0,0)-(1,0,0), pin at 0, k = 500, m = 1.
+  Points<Scalar> v(2, 3);
+  v << 0, 0, 0, 1, 0, 0;
+  Edges e(1, 2);
+  e << 0, 1;
+  System s(v, e, Scalar(1), Scalar(500));
+  s.pin(0);
+  FastMassSpring<System> solver;
+  solver.options.external_force = {0, Scalar(-9.8), 0};
+  solver.precompute(s, Scalar(1.0 / 30));
+  // It swings down as a pendulum, which implicit Euler damps slowly (about 0.5 % a step).
+  for (int frame = 0; frame < 6000; ++frame) REQUIRE(solver.step(s).ok());
+  const double tol = std::is_same_v<Scalar, float> ? 1e-5 : 1e-9;
+  const Eigen::RowVector3d x = s.positions().row(1).template cast<double>();
+  CHECK(x(0) == doctest::Approx(0.0).scale(1).epsilon(tol));
+  CHECK(x(1) == doctest::Approx(-(1.0 + 9.8 / 500)).epsilon(tol));
+  CHECK(x(2) == 0.0);
+  CHECK(s.positions().row(0).isZero(0));
+}
+
+TEST_CASE("a vertical spring follows implicit Euler's recurrence and oscillates at sqrt(k/m)") {
+  // Pin at the origin, a mass m below it on the y axis: along the axis the spring is exactly
+  // linear, so the step is y' = (m (2 y - y_prev) / h^2 - k r - m g) / (m / h^2 + k).
+  const double k = 500, m = 2, r = 1, g = 9.8, h = 1e-3;
+  Points<double> v(2, 3);
+  v << 0, 0, 0, 0, -r, 0;
+  Edges e(1, 2);
+  e << 0, 1;
+  MassSpringSystem<double> s(v, e, m, k);
+  s.pin(0);
+  const double equilibrium = -(r + m * g / k), amplitude = 1e-3;
+  Points<double> x0 = s.positions();
+  x0(1, 1) = equilibrium + amplitude;
+  s.set_positions(x0);
+  FastMassSpring<MassSpringSystem<double>> solver;
+  solver.options.gravity = {0, -g, 0};
+  solver.options.iterations = 3;
+  solver.precompute(s, h);
+
+  const double omega = std::sqrt(k / m);
+  const double period = 2 * M_PI / omega;
+  double y = x0(1, 1), y_prev = y;  // at rest
+  std::vector<double> crossings;
+  double worst = 0;
+  for (int n = 1; n * h < 4 * period; ++n) {
+    REQUIRE(solver.step(s).ok());
+    // The recurrence applied to the solver's own last two positions, every step.
+    const double expected = (m * (2 * y - y_prev) / (h * h) - k * r - m * g) / (m / (h * h) + k);
+    worst = std::max(worst, std::abs(s.positions()(1, 1) - expected));
+    y_prev = y;
+    y = s.positions()(1, 1);
+    // zero crossings of y - equilibrium, linearly interpolated
+    const double a = y_prev - equilibrium, b = y - equilibrium;
+    if ((a > 0) != (b > 0)) crossings.push_back((n - 1 + a / (a - b)) * h);
+  }
+  CHECK(worst <= 1e-14);  // |y| is about 1: a few rounding errors
+  CHECK(s.positions()(1, 0) == 0.0);
+  REQUIRE(crossings.size() >= 6);
+  const double measured =
+      M_PI * double(crossings.size() - 1) / (crossings.back() - crossings.front());
+  // Implicit Euler's own frequency is atan(omega h) / h; the exact one is sqrt(k/m).
+  CHECK(measured == doctest::Approx(std::atan(omega * h) / h).epsilon(1e-6));
+  CHECK(measured == doctest::Approx(omega).epsilon(1e-3));
+}
+
+TEST_CASE_TEMPLATE("pinned points: penalty moves them < 1e-6, exact not at all", System,
+                   MS_DOUBLE_SYSTEMS) {
+  for (const PinMode mode : {PinMode::Penalty, PinMode::Exact}) {
+    CAPTURE(int(mode));
+    System s = small_cloth<System>();
+    const Points<double> targets = s.pin_targets();
+    FastMassSpring<System> solver;
+    solver.options.pins = mode;
+    solver.options.external_force = {0, -9.8, 0};  // the assignment's force: 9.8 N per point
+    solver.precompute(s, 1.0 / 30);
+    double worst = 0;
+    for (int frame = 0; frame < 50; ++frame) {
+      REQUIRE(solver.step(s).ok());
+      for (int p = 0; p < s.num_pinned(); ++p)
+        worst = std::max(worst, (s.positions().row(s.pinned()[std::size_t(p)]) - targets.row(p))
+                                    .cwiseAbs()
+                                    .maxCoeff());
+    }
+    if (mode == PinMode::Exact)
+      CHECK(worst == 0.0);
+    else
+      CHECK(worst < 1e-6);
+  }
+}
+
+TEST_CASE_TEMPLATE("step() allocates nothing", System, MS_SYSTEM_TYPES) {
+  for (const PinMode mode : {PinMode::Exact, PinMode::Penalty}) {
+    for (const double tolerance : {0.0, 1e-6}) {
+      CAPTURE(int(mode));
+      CAPTURE(tolerance);
+      System s = small_cloth<System>();
+      FastMassSpring<System> solver;
+      solver.options.pins = mode;
+      solver.options.tolerance = typename System::Scalar(tolerance);
+      solver.options.gravity = {0, -9.8f, 0};
+      solver.precompute(s, 1.0f / 30);
+      std::size_t allocations = 0;
+      {
+        massspring::test::CountAllocations count;
+        for (int frame = 0; frame < 3; ++frame) solver.step(s);
+        allocations = count.count();
+      }
+      CHECK(allocations == 0);
+      CHECK(s.positions().allFinite());
+    }
+  }
+}
+
+TEST_CASE("the model's changes: re-factorise only for masses, stiffness, pins and options") {
+  using System = MassSpringSystem<double>;
+  System s = chain<System>();
+  FastMassSpring<System> solver;
+  solver.options.external_force = {0, -9.8, 0};
+  solver.precompute(s, 1.0 / 30);
+  CHECK_FALSE(solver.step(s).refactorized);
+
+  // Free: rest lengths, pin targets, state.
+  s.set_rest_lengths(s.rest_lengths() * 0.5);
+  s.set_pin_target(9, Eigen::Vector3d(0.8, 0.1, 0));
+  CHECK_FALSE(solver.step(s).refactorized);
+  CHECK(s.positions().row(9) == Eigen::RowVector3d(0.8, 0.1, 0));  // exact pins follow at once
+  CHECK_FALSE(solver.step(s).refactorized);
+
+  // Not free.
+  s.set_stiffness(s.stiffness() * 2);
+  CHECK(solver.step(s).refactorized);
+  CHECK_FALSE(solver.step(s).refactorized);
+  s.set_masses(s.masses() * 2);
+  CHECK(solver.step(s).refactorized);
+  s.unpin(9);
+  CHECK(solver.step(s).refactorized);
+  CHECK(solver.free_points().size() == 9);
+  solver.options.pins = PinMode::Penalty;
+  CHECK(solver.step(s).refactorized);
+  solver.options.penalty_weight = 1e9;
+  CHECK(solver.step(s).refactorized);
+  solver.options.iterations = 7;  // free
+  const auto report = solver.step(s);
+  CHECK_FALSE(report.refactorized);
+  CHECK(report.iterations == 7);
+}
+
+TEST_CASE("a shorter rest length moves the equilibrium: r + m g / k") {
+  Points<double> v(2, 3);
+  v << 0, 0, 0, 0, -1, 0;
+  Edges e(1, 2);
+  e << 0, 1;
+  MassSpringSystem<double> s(v, e, 1.0, 500.0);
+  s.pin(0);
+  s.set_rest_lengths(Eigen::VectorXd::Constant(1, 0.5));
+  FastMassSpring<MassSpringSystem<double>> solver;
+  solver.options.external_force = {0, -9.8, 0};
+  solver.precompute(s, 1.0 / 30);
+  for (int frame = 0; frame < 300; ++frame) solver.step(s);
+  CHECK(s.positions()(1, 1) == doctest::Approx(-(0.5 + 9.8 / 500)).epsilon(1e-10));
+}
+
+TEST_CASE("gravity as an acceleration is the per-point force m g") {
+  using System = MassSpringSystem<double>;
+  System a = small_cloth<System>(), b = a;
+  FastMassSpring<System> sa, sb;
+  sa.options.gravity = {0, -9.8, 0};
+  sb.options.external_force = {0, -9.8, 0};
+  sa.precompute(a, 0.01);
+  sb.precompute(b, 0.01);
+  // Scale b's masses to 1 would change the problem; instead compare a system with unit masses.
+  Eigen::VectorXd ones = Eigen::VectorXd::Ones(a.num_points());
+  a.set_masses(ones);
+  b.set_masses(ones);
+  for (int frame = 0; frame < 10; ++frame) {
+    sa.step(a);
+    sb.step(b);
+  }
+  CHECK(a.positions() == b.positions());
+}
+
+TEST_CASE("the tolerance stop") {
+  using System = MassSpringSystem<double>;
+  System s = small_cloth<System>();
+  FastMassSpring<System> solver;
+  solver.options.gravity = {0, -9.8, 0};
+  solver.options.iterations = 1000;
+  solver.options.tolerance = 1e-4;
+  solver.precompute(s, 1.0 / 30);
+  const auto report = solver.step(s);
+  CHECK(report.converged);
+  CHECK(report.iterations < 1000);
+  CHECK(report.iterations > 1);
+  CHECK(report.relative_decrease <= 1e-4);
+  solver.options.tolerance = 0;
+  solver.options.iterations = 13;
+  const auto fixed = solver.step(s);
+  CHECK_FALSE(fixed.converged);
+  CHECK(fixed.iterations == 13);
+}
+
+TEST_CASE("both starting guesses reach the same minimiser") {
+  using System = MassSpringSystem<double>;
+  System a = small_cloth<System>(), b = a;
+  FastMassSpring<System> sa, sb;
+  for (auto* solver : {&sa, &sb}) {
+    solver->options.gravity = {0, -9.8, 0};
+    solver->options.iterations = 20000;  // to the end: the minimiser, not a stopping rule
+  }
+  sb.options.initial_guess = InitialGuess::Inertial;
+  sa.precompute(a, 1.0 / 30);
+  sb.precompute(b, 1.0 / 30);
+  for (int frame = 0; frame < 3; ++frame) {
+    sa.step(a);
+    sb.step(b);
+  }
+  CHECK(relative_difference(a.positions(), b.positions()) <= 1e-12);
+}
+
+TEST_CASE("a step whose result is not finite reports it and keeps the last good state") {
+  using System = MassSpringSystem<double>;
+  System s = chain<System>();
+  FastMassSpring<System> solver;
+  solver.options.external_force = {0, -9.8, 0};
+  solver.precompute(s, 1.0 / 30);
+  REQUIRE(solver.step(s).ok());
+  const Points<double> x = s.positions(), v = s.velocities();
+  // A finite but enormous rest length: k r overflows to infinity in the right-hand side.
+  Eigen::VectorXd r = s.rest_lengths();
+  r(3) = 1e307;
+  s.set_rest_lengths(r);
+  const auto report = solver.step(s);
+  CHECK_FALSE(report.ok());
+  CHECK_FALSE(report.finite);
+  CHECK(s.positions() == x);
+  CHECK(s.velocities() == v);
+}
+
+TEST_CASE("a zero-length spring keeps its last direction") {
+  // Two free points joined by a spring of rest length 1 are pushed onto each other exactly.
+  Points<double> v(2, 3);
+  v << 0, 0, 0, 1, 0, 0;
+  Edges e(1, 2);
+  e << 0, 1;
+  MassSpringSystem<double> s(v, e, 1.0, 100.0);
+  Points<double> x(2, 3);
+  x << 0.5, 0, 0, 0.5, 0, 0;
+  s.set_positions(x);
+  FastMassSpring<MassSpringSystem<double>> solver;
+  solver.options.iterations = 1;
+  solver.precompute(s, 0.1);  // last direction: along +x (from the rest positions)
+  REQUIRE(solver.step(s).ok());
+  CHECK(s.positions().allFinite());
+  // The spring pushes the points apart along x, symmetrically.
+  CHECK(s.positions()(0, 0) < 0.5);
+  CHECK(s.positions()(1, 0) > 0.5);
+  CHECK(s.positions()(0, 0) + s.positions()(1, 0) == doctest::Approx(1.0));
+  CHECK(s.positions().col(1).isZero(0));
+}
+
+TEST_CASE("invalid options and time steps are refused") {
+  using System = MassSpringSystem<double>;
+  System s = chain<System>();
+  FastMassSpring<System> solver;
+  CHECK_THROWS_WITH_AS(solver.step(s), "step: call precompute(system, dt) first", Error);
+  CHECK_THROWS_WITH_AS(solver.precompute(s, 0.0),
+                       "precompute: time step dt must be finite and > 0, got 0", Error);
+  CHECK_THROWS_WITH_AS(solver.precompute(s, -0.1), doctest::Contains("got -0.1"), Error);
+  CHECK_THROWS_WITH_AS(solver.precompute(s, std::numeric_limits<double>::infinity()),
+                       doctest::Contains("dt must be finite"), Error);
+  solver.precompute(s, 0.1);
+  solver.options.iterations = 0;
+  CHECK_THROWS_WITH_AS(solver.step(s), "FastMassSpring: options.iterations must be >= 1, got 0",
+                       Error);
+  solver.options.iterations = 5;
+  solver.options.tolerance = -1;
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("options.tolerance"), Error);
+  solver.options.tolerance = 0;
+  solver.options.penalty_weight = 0;
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("options.penalty_weight"), Error);
+  solver.options.penalty_weight = 1e10;
+  solver.options.gravity(1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(solver.step(s), "FastMassSpring: options.gravity must be finite", Error);
+  solver.options.gravity.setZero();
+  solver.options.external_force(0) = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("external_force"), Error);
+}

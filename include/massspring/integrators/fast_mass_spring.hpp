@@ -248,7 +248,8 @@ class FastMassSpring {
         u = (system.rest_positions().row(springs(e, 0)) -
              system.rest_positions().row(springs(e, 1)))
                 .transpose();
-      direction_.row(e) = u.norm() > 0 ? (u / u.norm()).transpose() : u.transpose();
+      if (u.norm() > 0) u.normalize();
+      direction_.row(e) = u.transpose();
     }
   }
 

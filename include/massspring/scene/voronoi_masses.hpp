@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "massspring/error.hpp"
 #include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
