@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages massspring's build, tests, benchmarks and demo need.
+# Idempotent: does nothing when everything is there; runs apt-get update only when something is
+# missing. Uses sudo when not root.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ccache      # compiler, build system, compiler cache
+  libeigen3-dev                     # the library's one dependency
+  nlohmann-json3-dev                # massspring::io: JSON scenes
+  libcli11-dev                      # examples: command lines
+  doctest-dev                       # tests
+  libbenchmark-dev                  # benchmarks
+  python3 python3-matplotlib        # rendering pictures of frames
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update
+$sudo apt-get install -y --no-install-recommends "${missing[@]}"
