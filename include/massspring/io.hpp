@@ -2,4 +2,8 @@
 /// @file
 /// @brief Scene files: the assignment's JSON+OBJ scenes and OBJ frames. Needs nlohmann_json
 /// (CMake target massspring::io). The core (massspring/massspring.hpp) never includes this.
+
+#include "massspring/io/json_scene.hpp"
+#include "massspring/io/load_scene.hpp"
+#include "massspring/io/obj.hpp"
 #include "massspring/massspring.hpp"

@@ -1,0 +1,206 @@
+#pragma once
+/// @file
+/// @brief read_json_scene() and write_json_scene(): the assignment's JSON+OBJ scene format
+/// (docs/scenes.md), read strictly with nlohmann-json.
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "massspring/error.hpp"
+#include "massspring/io/detail/text_file.hpp"
+#include "massspring/io/obj.hpp"
+#include "massspring/scene/scene_description.hpp"
+
+namespace massspring::io {
+
+namespace detail {
+
+/// @brief A JSON value for a message: its type and, when short, its text.
+inline std::string describe_json(const nlohmann::json& value) {
+  std::string text = value.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return message(value.type_name(), ' ', text);
+}
+
+/// @brief A number's shortest round-trip decimal text (valid JSON for finite values).
+template <class Scalar>
+std::string json_number(Scalar x) {
+  std::string out;
+  append_number(out, x);
+  return out;
+}
+
+}  // namespace detail
+
+/// @brief Reads a scene in the assignment's JSON+OBJ format.
+///
+/// The JSON object has the keys
+/// - `"obj"` (required string): the OBJ file, relative to the JSON file's folder, read with
+///   read_obj(); its polygons and 2-vertex faces become `faces` and `edges`;
+/// - `"b"` (required array of integers): the pinned vertices, **1-based** (the description holds
+///   them 0-based); may be empty;
+/// - `"k"` (required number >= 0): the stiffness of every spring [N/m];
+/// - `"m"` (optional number > 0): the mass of every vertex [kg]; when absent, make_system() gives
+///   each vertex its lumped Voronoi area (density 1 kg/m^2);
+/// - `"png"` (optional string): a texture, ignored.
+///
+/// @tparam Scalar float or double
+/// @param[in] json  the .json file
+/// @throws Error naming the file and the key for a missing, unknown, repeated or mistyped key,
+/// `"bc"` (pinned positions: not supported), a pin out of range (its 1-based value and its
+/// position in "b"), a non-finite or negative stiffness, a mass that is not > 0; naming the file
+/// with nlohmann's line and column when the text is not JSON; and read_obj()'s errors (file and
+/// line) for the OBJ file.
+template <class Scalar = double>
+SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
+  static_assert(std::is_floating_point_v<Scalar>,
+                "read_json_scene<Scalar>: Scalar must be float or double");
+  using Json = nlohmann::json;
+  const std::string name = json.string();
+  auto error = [&name](const auto&... parts) {
+    return Error(detail::message(name, ": ", parts...));
+  };
+
+  const std::string text = detail::read_text_file(json, "JSON scene");
+  std::set<std::string> seen;
+  Json root;
+  try {
+    root = Json::parse(text, [&](int depth, Json::parse_event_t event, Json& parsed) {
+      if (depth == 1 && event == Json::parse_event_t::key) {
+        const std::string& key = parsed.get_ref<const std::string&>();
+        if (!seen.insert(key).second) throw error("key \"", key, "\" appears twice");
+      }
+      return true;
+    });
+  } catch (const Json::exception& e) {
+    std::string what = e.what();
+    if (const auto close = what.find("] ");
+        what.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
+      what = what.substr(close + 2);
+    throw error("not valid JSON: ", what);
+  }
+  if (!root.is_object())
+    throw error("expected a JSON object {\"obj\": ..., \"b\": [...], \"k\": ...}, got ",
+                root.type_name());
+
+  for (const auto& item : root.items()) {
+    const std::string& key = item.key();
+    if (key == "bc")
+      throw error(
+          "key \"bc\" (pinned positions) is not supported: pinned vertices stay at their "
+          "rest positions");
+    if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png")
+      throw error("unknown key \"", key, "\" (expected obj, b, k, m, png)");
+  }
+  auto require = [&](const char* key) -> const Json& {
+    const auto it = root.find(key);
+    if (it == root.end()) throw error("missing key \"", key, "\"");
+    return *it;
+  };
+  auto number = [&](const char* key, const Json& value, bool strict) {
+    if (!value.is_number())
+      throw error("key \"", key, "\": expected a number ", strict ? "> 0" : ">= 0", ", got ",
+                  detail::describe_json(value));
+    const double x = value.get<double>();
+    const Scalar s = static_cast<Scalar>(x);
+    if (!std::isfinite(s) || (strict ? !(s > 0) : !(s >= 0)))
+      throw error("key \"", key, "\": expected a finite number ", strict ? "> 0" : ">= 0",
+                  (std::isfinite(s) ? "" : " (in this Scalar type)"), ", got ", value.dump());
+    return s;
+  };
+
+  const Json& obj = require("obj");
+  if (!obj.is_string() || obj.get_ref<const std::string&>().empty())
+    throw error("key \"obj\": expected the name of an OBJ file (a string), got ",
+                detail::describe_json(obj));
+  const std::filesystem::path obj_path =
+      json.parent_path() / std::filesystem::path(obj.get_ref<const std::string&>());
+
+  const Json& b = require("b");
+  if (!b.is_array())
+    throw error("key \"b\": expected an array of 1-based vertex ids, got ",
+                detail::describe_json(b));
+  for (std::size_t p = 0; p < b.size(); ++p)
+    if (!b[p].is_number_integer())
+      throw error("key \"b\": entry ", p, " (counting from 0) is ", detail::describe_json(b[p]),
+                  ", expected an integer vertex id (1-based)");
+
+  SceneDescription<Scalar> scene;
+  scene.stiffness = number("k", require("k"), false);
+  if (const auto m = root.find("m"); m != root.end()) scene.mass = number("m", *m, true);
+  if (const auto png = root.find("png"); png != root.end() && !png->is_string())
+    throw error("key \"png\": expected the name of a texture image (a string), got ",
+                detail::describe_json(*png));
+
+  if (!std::filesystem::exists(obj_path))
+    throw error("key \"obj\": OBJ file ", obj_path.string(), " not found");
+  ObjMesh<Scalar> mesh = read_obj<Scalar>(obj_path);
+  const auto n = static_cast<std::int64_t>(mesh.vertices.rows());
+
+  scene.pinned.reserve(b.size());
+  for (std::size_t p = 0; p < b.size(); ++p) {
+    const bool negative = !b[p].is_number_unsigned() && b[p].get<std::int64_t>() < 0;
+    const bool too_big = !negative && b[p].get<std::uint64_t>() > std::uint64_t(n);
+    if (negative || too_big || b[p].get<std::int64_t>() == 0)
+      throw error("key \"b\": entry ", p, " (counting from 0) is ", b[p].dump(),
+                  ", out of range [1, ", n, "]: vertex ids are 1-based and ", obj_path.string(),
+                  " has ", n, " vertices");
+    scene.pinned.push_back(static_cast<int>(b[p].get<std::int64_t>() - 1));
+  }
+  scene.vertices = std::move(mesh.vertices);
+  scene.faces = std::move(mesh.faces);
+  scene.edges = std::move(mesh.edges);
+  return scene;
+}
+
+/// @brief Writes a scene in the assignment's JSON+OBJ format: `<stem>.obj` beside `json` (with
+/// write_obj(): polygons as `f a b c ...`, edges as `f i j`), then `json` referencing it, pins
+/// 1-based, `"m"` only when the mass is given. Each file is written atomically (`.tmp`, then
+/// renamed). read_json_scene() gives the same description back, bit for bit.
+/// @param[in] json   the .json file to write (its folder must exist); must not end in .obj
+/// @param[in] scene  faces of 3 or more vertices, indices and pins in range, stiffness finite and
+///                   >= 0, mass (when given) finite and > 0
+/// @throws Error naming the file and the item for an invalid scene (nothing is written) or when
+/// a file cannot be written.
+template <class Scalar>
+void write_json_scene(const std::filesystem::path& json, const SceneDescription<Scalar>& scene) {
+  const std::string name = json.string();
+  auto error = [&name](const auto&... parts) {
+    return Error(detail::message(name, ": ", parts...));
+  };
+  std::filesystem::path obj_path = json;
+  obj_path.replace_extension(".obj");
+  if (obj_path == json) throw error("a JSON scene must not be named .obj: its OBJ file is ", name);
+  if (!(std::isfinite(scene.stiffness) && scene.stiffness >= 0))
+    throw error("stiffness must be finite and >= 0, got ", scene.stiffness);
+  if (scene.mass && !(std::isfinite(*scene.mass) && *scene.mass > 0))
+    throw error("mass must be finite and > 0, got ", *scene.mass);
+  const Eigen::Index n = scene.vertices.rows();
+  for (std::size_t p = 0; p < scene.pinned.size(); ++p)
+    if (scene.pinned[p] < 0 || scene.pinned[p] >= n)
+      throw error("pin ", p, ": vertex index ", scene.pinned[p], " out of range [0, ", n, ")");
+
+  write_obj(obj_path, scene.vertices, scene.faces, scene.edges);
+
+  std::string out = "{\n  \"obj\": ";
+  out += nlohmann::json(obj_path.filename().string()).dump();
+  out += ",\n  \"b\": [";
+  for (std::size_t p = 0; p < scene.pinned.size(); ++p) {
+    if (p) out += ", ";
+    detail::append_index(out, scene.pinned[p] + 1);
+  }
+  out += "],\n  \"k\": " + detail::json_number(scene.stiffness);
+  if (scene.mass) out += ",\n  \"m\": " + detail::json_number(*scene.mass);
+  out += "\n}\n";
+  detail::write_text_file_atomically(json, out);
+}
+
+}  // namespace massspring::io
