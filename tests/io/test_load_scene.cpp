@@ -2,7 +2,9 @@
 // the scene file.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/io/load_scene.hpp>
 #include <string>
 #include <vector>
@@ -141,12 +143,43 @@ TEST_CASE("load_scene puts the scene's path in front of make_system's errors") {
   // vertex 4 (index 3) lies on no face: its Voronoi mass would be 0
   dir.write("loose.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nf 3 4\n");
   const auto loose = dir.write("loose.json", R"({"obj": "loose.obj", "b": [], "k": 1})");
-  CHECK_THROWS_WITH_AS(load_scene<SparseSystem>(loose),
-                       massspring::test::contains(loose.string() + ": point 3: lies on no face"),
-                       Error);
+  CHECK_THROWS_WITH_AS(
+      load_scene<SparseSystem>(loose),
+      massspring::test::contains(loose.string() + ": point 3 (OBJ vertex 4): lies on no face"),
+      Error);
   // with "m" both load
   dir.write("loose_m.json", R"({"obj": "loose.obj", "b": [4], "k": 1, "m": 2})");
   const auto s = load_scene<SparseSystem>(dir / "loose_m.json");
   CHECK(s.num_springs() == 4);
   CHECK(s.pinned() == std::vector<int>{3});
+}
+
+TEST_CASE("the assignment's flag and skirt run 100 frames with its settings, finite throughout" *
+          doctest::skip(!massspring::test::have_jacobson())) {
+  // The assignment's main.cpp: dt = 1/30, a force of (0, -9.8, 0) N on every point, penalty pins
+  // w = 1e10 at the rest positions, 50 iterations per step from the current positions.
+  for (const char* file : {"flag.json", "skirt.json"}) {
+    CAPTURE(file);
+    auto system = load_scene<SparseSystem>(massspring::test::jacobson_dir() / file);
+    massspring::FastMassSpring<SparseSystem> solver;
+    solver.options.pins = massspring::PinMode::Penalty;
+    solver.options.external_force = {0, -9.8, 0};
+    solver.precompute(system, 1.0 / 30);
+    const double start_y = system.positions().col(1).mean();
+    int first_bad = -1;
+    for (int frame = 0; frame < 100 && first_bad < 0; ++frame) {
+      const auto report = solver.step(system);
+      if (!report.ok() || !system.positions().allFinite() || !system.velocities().allFinite())
+        first_bad = frame;
+    }
+    CHECK(first_bad == -1);
+    // It fell, and the pins held.
+    CHECK(system.positions().col(1).mean() < start_y - 0.01);
+    double worst = 0;
+    for (int r = 0; r < system.num_pinned(); ++r)
+      worst = std::max(worst, (system.positions().row(system.pinned()[std::size_t(r)]) -
+                               system.pin_targets().row(r))
+                                  .norm());
+    CHECK(worst < 1e-6);
+  }
 }

@@ -28,8 +28,8 @@ System make_system(const SceneDescription<Scalar>& scene) {
     masses = voronoi_masses(scene.vertices, scene.faces).template cast<S>();
     for (int i = 0; i < n; ++i)
       if (!(masses(i) > 0))
-        throw Error(detail::message("point ", i,
-                                    ": lies on no face of nonzero area, so its Voronoi mass is ",
+        throw Error(detail::message("point ", i, " (OBJ vertex ", i + 1,
+                                    "): lies on no face of nonzero area, so its Voronoi mass is ",
                                     masses(i), "; give a mass (\"m\")"));
   }
   System system(scene.vertices.template cast<S>(), springs, masses,
