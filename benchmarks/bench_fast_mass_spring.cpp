@@ -36,7 +36,7 @@
 #include <utility>
 #include <vector>
 
-#if MASSSPRING_BENCH_WITH_IO && __has_include(<massspring/io/load_scene.hpp>)
+#if MASSSPRING_BENCH_WITH_IO  // flag and skirt need massspring::io
 #include <massspring/io/load_scene.hpp>
 #define MASSSPRING_BENCH_HAVE_LOAD_SCENE 1
 #else
