@@ -9,21 +9,19 @@
 // Exit status: 0 on success, 1 for invalid input, 2 when a step diverged (the frames written so
 // far are kept).
 
-#include <massspring/io.hpp>
-#include <massspring/massspring.hpp>
-
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <massspring/io.hpp>
+#include <massspring/massspring.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 namespace {
 
@@ -131,8 +129,8 @@ int run(const Config& c, const massspring::SceneDescription<double>& scene,
   massspring::FastMassSpring<System> solver;
   solver.options.iterations = c.iterations;
   solver.options.tolerance = Scalar(c.tolerance);
-  solver.options.pins = c.pins == "penalty" ? massspring::PinMode::Penalty
-                                            : massspring::PinMode::Exact;
+  solver.options.pins =
+      c.pins == "penalty" ? massspring::PinMode::Penalty : massspring::PinMode::Exact;
   solver.options.penalty_weight = Scalar(c.penalty_weight);
   for (int k = 0; k < 3; ++k) {
     solver.options.external_force(k) = Scalar(c.force[std::size_t(k)]);
@@ -147,11 +145,12 @@ int run(const Config& c, const massspring::SceneDescription<double>& scene,
   const double precompute_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!c.quiet)
-    std::printf("%s: %d points, %d springs, %d pinned; %s, %s, %s pins; precompute %.2f ms "
-                "(factor %lld nonzeros)\n",
-                name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
-                c.storage.c_str(), c.precision.c_str(), c.pins.c_str(), precompute_ms,
-                static_cast<long long>(solver.factor_nonzeros()));
+    std::printf(
+        "%s: %d points, %d springs, %d pinned; %s, %s, %s pins; precompute %.2f ms "
+        "(factor %lld nonzeros)\n",
+        name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
+        c.storage.c_str(), c.precision.c_str(), c.pins.c_str(), precompute_ms,
+        static_cast<long long>(solver.factor_nonzeros()));
 
   if (!c.out.empty()) fs::create_directories(c.out);
   std::optional<TrajectoryCsv> csv;
@@ -175,9 +174,8 @@ int run(const Config& c, const massspring::SceneDescription<double>& scene,
   for (int frame = 1; frame <= c.frames; ++frame) {
     const auto start = std::chrono::steady_clock::now();
     const massspring::StepReport report = solver.step(system);
-    ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                     .count());
     iterations += report.iterations;
     if (!report.ok()) {
       diverged_at = frame;
@@ -221,9 +219,7 @@ int main(int argc, char** argv) {
   app.add_option("--frames", c.frames, "Frames (steps) to simulate")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  app.add_option("--dt", c.dt, "Time step [s]")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  app.add_option("--dt", c.dt, "Time step [s]")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--iterations", c.iterations, "Most local-global iterations per step")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

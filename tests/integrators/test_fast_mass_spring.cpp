@@ -1,15 +1,14 @@
 // integrators/fast_mass_spring.hpp: Q, energy descent, closed forms, pins, allocation, failure.
+#include <doctest/doctest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/scene/cloth.hpp>
 #include <massspring/scene/make_system.hpp>
-
-#include <cmath>
-#include <limits>
 #include <random>
 #include <vector>
-
-#include <Eigen/Eigenvalues>
-#include <doctest/doctest.h>
 
 #include "support/alloc_counter.hpp"
 
@@ -149,13 +148,13 @@ double relative_difference(const Points<double>& a, const Points<double>& b) {
 
 }  // namespace
 
-#define MS_SYSTEM_TYPES                                                                      \
-  MassSpringSystem<double, Sparse>, MassSpringSystem<double, Dense>,                         \
+#define MS_SYSTEM_TYPES                                              \
+  MassSpringSystem<double, Sparse>, MassSpringSystem<double, Dense>, \
       MassSpringSystem<float, Sparse>, MassSpringSystem<float, Dense>
 #define MS_DOUBLE_SYSTEMS MassSpringSystem<double, Sparse>, MassSpringSystem<double, Dense>
 
-TEST_CASE_TEMPLATE("Q = A^T K A + M / dt^2 (+ w C^T C) is symmetric positive definite",
-                   System, MS_DOUBLE_SYSTEMS) {
+TEST_CASE_TEMPLATE("Q = A^T K A + M / dt^2 (+ w C^T C) is symmetric positive definite", System,
+                   MS_DOUBLE_SYSTEMS) {
   const System s = small_cloth<System>(5, 4);
   const double dt = 1.0 / 30;
   // Independent: Q from the system's own A, K, M, C with sparse products.
@@ -163,7 +162,8 @@ TEST_CASE_TEMPLATE("Q = A^T K A + M / dt^2 (+ w C^T C) is symmetric positive def
   const Eigen::SparseMatrix<double> k = dense(s.stiffness_matrix()).sparseView();
   const Eigen::SparseMatrix<double> m = dense(s.mass_matrix()).sparseView();
   const Eigen::SparseMatrix<double> c = dense(s.pin_selector()).sparseView();
-  const Eigen::MatrixXd base = Eigen::MatrixXd(a.transpose() * k * a) + Eigen::MatrixXd(m) / (dt * dt);
+  const Eigen::MatrixXd base =
+      Eigen::MatrixXd(a.transpose() * k * a) + Eigen::MatrixXd(m) / (dt * dt);
 
   for (const PinMode mode : {PinMode::Penalty, PinMode::Exact}) {
     CAPTURE(int(mode));
@@ -386,9 +386,9 @@ TEST_CASE_TEMPLATE("pinned points: penalty moves them < 1e-6, exact not at all",
     for (int frame = 0; frame < 50; ++frame) {
       REQUIRE(solver.step(s).ok());
       for (int p = 0; p < s.num_pinned(); ++p)
-        worst = std::max(worst, (s.positions().row(s.pinned()[std::size_t(p)]) - targets.row(p))
-                                    .cwiseAbs()
-                                    .maxCoeff());
+        worst = std::max(
+            worst,
+            (s.positions().row(s.pinned()[std::size_t(p)]) - targets.row(p)).cwiseAbs().maxCoeff());
     }
     if (mode == PinMode::Exact)
       CHECK(worst == 0.0);

@@ -1,10 +1,9 @@
 // A program that uses massspring as a consumer would: core and io, through the package's targets.
-#include <massspring/io.hpp>
-#include <massspring/massspring.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <massspring/io.hpp>
+#include <massspring/massspring.hpp>
 
 int main(int argc, char** argv) {
   using System = massspring::MassSpringSystem<double, massspring::Sparse>;

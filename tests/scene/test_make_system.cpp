@@ -83,7 +83,8 @@ TEST_CASE("make_system refuses a scene it cannot give masses to, or an invalid p
   auto loose = square_with_tail();  // point 4 is on the tail only
   loose.mass.reset();
   CHECK_THROWS_WITH_AS(make_system<SparseSystem>(loose),
-                       doctest::Contains("point 4 (OBJ vertex 5): lies on no face of nonzero area"), Error);
+                       doctest::Contains("point 4 (OBJ vertex 5): lies on no face of nonzero area"),
+                       Error);
 
   auto bad_pin = square_with_tail();
   bad_pin.pinned = {5};

@@ -1,10 +1,9 @@
 // system/mass_spring_system.hpp: the matrices it builds and the input it refuses.
-#include <massspring/system/mass_spring_system.hpp>
+#include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
-
-#include <doctest/doctest.h>
+#include <massspring/system/mass_spring_system.hpp>
 
 namespace {
 
@@ -40,8 +39,8 @@ Eigen::MatrixXd to_dense(const Matrix& m) {
 
 }  // namespace
 
-#define MS_SYSTEM_TYPES                                                     \
-  MassSpringSystem<double, Sparse>, MassSpringSystem<double, Dense>,        \
+#define MS_SYSTEM_TYPES                                              \
+  MassSpringSystem<double, Sparse>, MassSpringSystem<double, Dense>, \
       MassSpringSystem<float, Sparse>, MassSpringSystem<float, Dense>
 
 TEST_CASE_TEMPLATE("incidence rows are +1 at the first point and -1 at the second", System,
@@ -174,8 +173,8 @@ TEST_CASE("invalid input raises massspring::Error naming the item, and changes n
     CHECK_THROWS_WITH_AS(System(bad, e, 1.0, 1.0), doctest::Contains("point 2"), Error);
   }
   SUBCASE("mass <= 0 or not finite") {
-    CHECK_THROWS_WITH_AS(System(v, e, 0.0, 1.0),
-                         "point 0: mass must be finite and > 0, got 0", Error);
+    CHECK_THROWS_WITH_AS(System(v, e, 0.0, 1.0), "point 0: mass must be finite and > 0, got 0",
+                         Error);
     CHECK_THROWS_WITH_AS(System(v, e, Eigen::Vector4d(1, 1, -2, 1), Eigen::Vector4d::Ones()),
                          "point 2: mass must be finite and > 0, got -2", Error);
     CHECK_THROWS_WITH_AS(System(v, e, Eigen::Vector4d(1, nan, 1, 1), Eigen::Vector4d::Ones()),
@@ -211,8 +210,7 @@ TEST_CASE("invalid input raises massspring::Error naming the item, and changes n
     CHECK_THROWS_WITH_AS(s.set_velocities(Points<double>::Zero(3, 3)),
                          "velocities: expected 4 by 3, got 3 by 3", Error);
     CHECK_THROWS_WITH_AS(s.pin(7), "pin: point index 7 out of range [0, 4)", Error);
-    CHECK_THROWS_WITH_AS(s.pin(std::vector<int>{0, 9}), doctest::Contains("point index 9"),
-                         Error);
+    CHECK_THROWS_WITH_AS(s.pin(std::vector<int>{0, 9}), doctest::Contains("point index 9"), Error);
     CHECK_THROWS_WITH_AS(s.pin(1, Eigen::Vector3d(0, nan, 0)),
                          doctest::Contains("pin 1: target must be finite"), Error);
     CHECK_THROWS_WITH_AS(s.set_pin_target(1, Eigen::Vector3d::Zero()),

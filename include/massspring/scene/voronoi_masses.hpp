@@ -3,9 +3,8 @@
 /// @brief voronoi_masses(): lumped per-vertex areas of a polygon mesh (mixed Voronoi, Meyer et al.
 /// 2003), the masses the assignment's scenes get when they give none.
 
-#include <vector>
-
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "massspring/error.hpp"
 #include "massspring/system/detail/validate.hpp"
