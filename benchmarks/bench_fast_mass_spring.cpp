@@ -110,6 +110,18 @@ void set_counters(benchmark::State& state, const System& system, Eigen::Index fa
 // ---- ours
 // ----------------------------------------------------------------------------------------
 
+// Precomputes a solver for a benchmark; on failure marks the benchmark skipped and says why.
+template <class Solver, class System>
+bool precompute_or_skip(benchmark::State& state, Solver& solver, const System& system) {
+  try {
+    solver.precompute(system, kDt);
+    return true;
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return false;
+  }
+}
+
 template <class System>
 void bm_precompute(benchmark::State& state, const System& proto) {
   Eigen::Index nnz = 0;
@@ -132,12 +144,7 @@ template <class System>
 void bm_step(benchmark::State& state, const System& proto) {
   System system = proto;
   massspring::FastMassSpring<System> solver(assignment_options());
-  try {
-    solver.precompute(system, kDt);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  if (!precompute_or_skip(state, solver, system)) return;
   double iterations = 0, steps = 0;
   for (auto _ : state) {
     const massspring::StepReport report = solver.step(system);
@@ -158,12 +165,7 @@ template <class System>
 void bm_floor(benchmark::State& state, const System& proto) {
   massspring::FastMassSpring<System> solver(assignment_options());
   typename System::Traits::Cholesky cholesky;
-  try {
-    solver.precompute(proto, kDt);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  if (!precompute_or_skip(state, solver, proto)) return;
   if (!cholesky.compute(solver.system_matrix())) {
     state.SkipWithError("Q is not positive definite");
     return;
@@ -201,12 +203,7 @@ void bm_seed_precompute(benchmark::State& state, const SparseSystem& proto) {
 
 void bm_seed_step(benchmark::State& state, const SparseSystem& proto) {
   SeedFastMassSpring seed(seed_options());
-  try {
-    seed.precompute(proto, kDt);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  if (!precompute_or_skip(state, seed, proto)) return;
   for (auto _ : state) {
     seed.step();
     benchmark::DoNotOptimize(seed.positions().data());
@@ -218,12 +215,7 @@ void bm_seed_step(benchmark::State& state, const SparseSystem& proto) {
 // Eigen's own solve on the seed's factor: the seed's global step without its local step.
 void bm_eigen_solve(benchmark::State& state, const SparseSystem& proto) {
   SeedFastMassSpring seed(seed_options());
-  try {
-    seed.precompute(proto, kDt);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+  if (!precompute_or_skip(state, seed, proto)) return;
   const Eigen::MatrixXd b = Eigen::MatrixXd::Random(proto.num_points(), 3);
   Eigen::MatrixXd x(proto.num_points(), 3);
   for (auto _ : state) {

@@ -566,6 +566,31 @@ TEST_CASE("a zero-length spring keeps its last direction") {
   CHECK(s.positions().col(1).isZero(0));
 }
 
+TEST_CASE("a zero-length spring takes its direction from the end of the previous step") {
+  // At rest the spring lies along x; a first step with the points apart along y records y; then
+  // the points are put on top of each other and the spring must push them apart along y, not x.
+  Points<double> v(2, 3);
+  v << 0, 0, 0, 1, 0, 0;
+  Edges e(1, 2);
+  e << 0, 1;
+  MassSpringSystem<double> s(v, e, 1.0, 100.0);
+  FastMassSpring<MassSpringSystem<double>> solver;
+  solver.options.iterations = 1;
+  solver.precompute(s, 0.1);  // the spring's direction is x here
+  Points<double> x(2, 3);
+  x << 0.5, 0, 0, 0.5, 0.1, 0;
+  s.set_positions(x);
+  REQUIRE(solver.step(s).ok());
+  CHECK(s.positions().col(0).isConstant(0.5));  // stayed on the y axis
+  x << 0.5, 0.05, 0, 0.5, 0.05, 0;
+  s.set_positions(x);
+  s.set_velocities(Points<double>::Zero(2, 3));
+  REQUIRE(solver.step(s).ok());
+  CHECK(s.positions().col(0).isConstant(0.5));
+  CHECK(s.positions()(1, 1) - s.positions()(0, 1) > 0.01);  // point 1 above point 0, as before
+  CHECK(s.positions().col(2).isZero(0));
+}
+
 TEST_CASE("invalid options and time steps are refused") {
   using System = MassSpringSystem<double>;
   System s = chain<System>();

@@ -116,7 +116,7 @@ class FastMassSpring {
     const bool track = options.tolerance > 0;
     double e0 = 0, e_prev = 0, e_last = 0;
     for (int k = 0; k < cap; ++k) {
-      const Scalar spring_energy = local_step(system);
+      const Scalar spring_energy = spring_pass<true>(system);
       if (track || k == 0 || k == cap - 1) {
         const double e = double(spring_energy) + double(quadratic_energy(system));
         if (k == 0) e0 = e;
@@ -133,7 +133,7 @@ class FastMassSpring {
       global_step();
       ++report.iterations;
     }
-    const double e_final = double(finish_energy(system)) + double(quadratic_energy(system));
+    const double e_final = double(spring_pass<false>(system)) + double(quadratic_energy(system));
     report.energy = e_final;
     if (!report.converged) report.relative_decrease = relative(e_last - e_final, e0 - e_final);
 
@@ -282,10 +282,12 @@ class FastMassSpring {
         x_.row(system.pinned()[std::size_t(r)]) = targets.row(r);
   }
 
-  // rhs = rhs0 + A^T K D for the current iterate, in one pass over the springs; returns the
-  // spring energy of the current iterate.
-  Scalar local_step(const System& system) {
-    rhs_ = rhs0_;
+  // One pass over the springs at the current iterate; returns their energy. With Scatter (the
+  // local step) it also sets rhs = rhs0 + A^T K D; without (after the last iteration) it records
+  // each spring's direction, which a spring of zero length keeps at the next step.
+  template <bool Scatter>
+  Scalar spring_pass(const System& system) {
+    if constexpr (Scatter) rhs_ = rhs0_;
     const auto& springs = system.springs();
     const auto& k = system.stiffness();
     const auto& r = system.rest_lengths();
@@ -300,18 +302,22 @@ class FastMassSpring {
       const Scalar len = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const Scalar stretch = len - r(e);
       energy += k(e) * stretch * stretch;
-      Scalar s0, s1, s2;  // k_e r_e times the spring's unit direction
-      if (len > 0) {
-        const Scalar f = k(e) * r(e) / len;
-        s0 = f * d0, s1 = f * d1, s2 = f * d2;
-      } else {
-        const Scalar f = k(e) * r(e);
-        s0 = f * direction_(e, 0), s1 = f * direction_(e, 1), s2 = f * direction_(e, 2);
+      if constexpr (Scatter) {
+        Scalar s0, s1, s2;  // k_e r_e times the spring's unit direction
+        if (len > 0) {
+          const Scalar f = k(e) * r(e) / len;
+          s0 = f * d0, s1 = f * d1, s2 = f * d2;
+        } else {
+          const Scalar f = k(e) * r(e);
+          s0 = f * direction_(e, 0), s1 = f * direction_(e, 1), s2 = f * direction_(e, 2);
+        }
+        Scalar* bi = b + 3 * spring_rows_(e, 0);
+        Scalar* bj = b + 3 * spring_rows_(e, 1);
+        bi[0] += s0, bi[1] += s1, bi[2] += s2;
+        bj[0] -= s0, bj[1] -= s1, bj[2] -= s2;
+      } else if (len > 0) {
+        direction_(e, 0) = d0 / len, direction_(e, 1) = d1 / len, direction_(e, 2) = d2 / len;
       }
-      Scalar* bi = b + 3 * spring_rows_(e, 0);
-      Scalar* bj = b + 3 * spring_rows_(e, 1);
-      bi[0] += s0, bi[1] += s1, bi[2] += s2;
-      bj[0] -= s0, bj[1] -= s1, bj[2] -= s2;
     }
     return energy / 2;
   }
@@ -324,21 +330,6 @@ class FastMassSpring {
     }
     llt_.solve(rhs_.topRows(n_red_), solution_);
     for (int r = 0; r < n_red_; ++r) x_.row(free_[std::size_t(r)]) = solution_.row(r);
-  }
-
-  // Spring energy of the final iterate; refreshes each spring's last direction.
-  Scalar finish_energy(const System& system) {
-    const auto& springs = system.springs();
-    const auto& k = system.stiffness();
-    const auto& r = system.rest_lengths();
-    Scalar energy = 0;
-    for (int e = 0; e < system.num_springs(); ++e) {
-      const auto d = x_.row(springs(e, 0)) - x_.row(springs(e, 1));
-      const Scalar len = d.norm();
-      energy += k(e) * (len - r(e)) * (len - r(e));
-      if (len > 0) direction_.row(e) = d / len;
-    }
-    return energy / 2;
   }
 
   // The iterate-dependent part of E other than the springs: inertia, external force, penalty.

@@ -43,16 +43,13 @@ struct ChainOptions {
 inline SceneDescription<double> make_chain(const ChainOptions& o) {
   using detail::message;
   if (o.points < 2) throw Error(message("make_chain: points must be >= 2, got ", o.points));
-  if (!(o.length > 0) || !std::isfinite(o.length))
-    throw Error(message("make_chain: length must be finite and > 0, got ", o.length));
+  detail::require_number("make_chain", "length", o.length, true);
   const double norm = o.direction.norm();
   if (!o.direction.allFinite() || !(norm > 0) || !std::isfinite(norm))
     throw Error(message("make_chain: direction must be finite and nonzero, got ",
                         detail::format_row(o.direction)));
-  if (!(o.stiffness >= 0) || !std::isfinite(o.stiffness))
-    throw Error(message("make_chain: stiffness must be finite and >= 0, got ", o.stiffness));
-  if (!(o.mass > 0) || !std::isfinite(o.mass))
-    throw Error(message("make_chain: mass must be finite and > 0, got ", o.mass));
+  detail::require_number("make_chain", "stiffness", o.stiffness, false);
+  detail::require_number("make_chain", "mass", o.mass, true);
 
   const Vector3<double> unit = o.direction / norm;
   SceneDescription<double> s;

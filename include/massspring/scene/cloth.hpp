@@ -68,11 +68,8 @@ inline SceneDescription<double> make_cloth(const ClothOptions& o) {
   if (!(o.width > 0) || !(o.height > 0) || !std::isfinite(o.width) || !std::isfinite(o.height))
     throw Error(detail::message("make_cloth: width and height must be finite and > 0, got ",
                                 o.width, " by ", o.height));
-  if (!(o.stiffness >= 0) || !std::isfinite(o.stiffness))
-    throw Error(
-        detail::message("make_cloth: stiffness must be finite and >= 0, got ", o.stiffness));
-  if (o.mass && !(*o.mass > 0 && std::isfinite(*o.mass)))
-    throw Error(detail::message("make_cloth: mass must be finite and > 0, got ", *o.mass));
+  detail::require_number("make_cloth", "stiffness", o.stiffness, false);
+  if (o.mass) detail::require_number("make_cloth", "mass", *o.mass, true);
 
   const int cols = o.columns, rows = o.rows;
   auto id = [cols](int r, int c) { return r * cols + c; };

@@ -49,10 +49,8 @@ inline SceneDescription<double> make_net(const NetOptions& o) {
   if (!(o.width > 0) || !(o.depth > 0) || !std::isfinite(o.width) || !std::isfinite(o.depth))
     throw Error(message("make_net: width and depth must be finite and > 0, got ", o.width, " by ",
                         o.depth));
-  if (!(o.stiffness >= 0) || !std::isfinite(o.stiffness))
-    throw Error(message("make_net: stiffness must be finite and >= 0, got ", o.stiffness));
-  if (!(o.mass > 0) || !std::isfinite(o.mass))
-    throw Error(message("make_net: mass must be finite and > 0, got ", o.mass));
+  detail::require_number("make_net", "stiffness", o.stiffness, false);
+  detail::require_number("make_net", "mass", o.mass, true);
 
   const int cols = o.columns, rows = o.rows;
   auto id = [cols](int r, int c) { return r * cols + c; };

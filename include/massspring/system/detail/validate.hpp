@@ -61,4 +61,11 @@ void require_positive(const char* item, const char* what, const Eigen::MatrixBas
   }
 }
 
+/// @brief Throws "<where>: <what> must be finite and > 0 (or >= 0), got x" unless x is.
+inline void require_number(const char* where, const char* what, double x, bool strict) {
+  if (!(std::isfinite(x) && (strict ? x > 0 : x >= 0)))
+    throw Error(
+        message(where, ": ", what, " must be finite and ", strict ? "> 0" : ">= 0", ", got ", x));
+}
+
 }  // namespace massspring::detail
