@@ -8,6 +8,7 @@ packages=(
   build-essential cmake ccache      # compiler, build system, compiler cache
   libeigen3-dev                     # the library's one dependency
   nlohmann-json3-dev                # massspring::io: JSON scenes
+  libpugixml-dev                    # massspring::io: FOSSSim XML scenes
   libcli11-dev                      # examples: command lines
   doctest-dev                       # tests
   libbenchmark-dev                  # benchmarks

@@ -1,5 +1,5 @@
 // io/load_scene.hpp: every assignment scene loads with the counts SOURCE.md lists; the errors name
-// the scene file.
+// the scene file; .xml goes to the FOSSSim reader (tested in test_fosssim_scene.cpp).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -117,11 +117,21 @@ TEST_CASE("load_scene picks the format by extension, in any case") {
   CHECK(s.num_springs() == 3);
   CHECK(s.masses().sum() == doctest::Approx(0.5));  // the triangle's area
 
-  const auto xml = dir.write("scene.xml", "<scene/>");
+  // .XML goes to the FOSSSim reader
+  const auto xml = dir.write("scene.XML",
+                             "<scene>\n<duration time=\"1\"/>\n"
+                             "<integrator type=\"explicit-euler\" dt=\"0.1\"/>\n"
+                             "<particle m=\"2\" px=\"1\" py=\"2\" vx=\"0\" vy=\"0\" fixed=\"0\"/>\n"
+                             "</scene>\n");
+  const auto x = load_scene<DenseSystem>(xml);
+  CHECK(x.num_points() == 1);
+  CHECK(x.masses()(0) == 2);
+  const auto obj = dir.write("scene.obj", "v 0 0 0\n");
   CHECK_THROWS_WITH_AS(
-      load_scene<DenseSystem>(xml),
-      massspring::test::contains(xml.string() + ": unsupported scene format \".xml\": "
-                                                "supported are .json (JSON+OBJ scene)"),
+      load_scene<DenseSystem>(obj),
+      massspring::test::contains(obj.string() + ": unsupported scene format \".obj\": "
+                                                "supported are .json (JSON+OBJ scene), .xml "
+                                                "(FOSSSim XML scene)"),
       Error);
   CHECK_THROWS_WITH_AS(load_scene<DenseSystem>(dir / "noext"),
                        doctest::Contains("unsupported scene format \"\""), Error);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "massspring/error.hpp"
+#include "massspring/io/fosssim_scene.hpp"
 #include "massspring/io/json_scene.hpp"
 #include "massspring/scene/make_system.hpp"
 
@@ -37,12 +38,24 @@ System load_json_scene(const std::filesystem::path& path) {
   }
 }
 
-/// @brief Every format load_scene() knows. A new format (the FOSSSim .xml scenes) is one more
-/// entry here.
+/// @brief FOSSSim's XML scenes: read_fosssim_scene(), then make_fosssim_system(), whose errors
+/// get the scene's path in front.
+template <class System>
+System load_fosssim_xml_scene(const std::filesystem::path& path) {
+  const FosssimScene scene = read_fosssim_scene(path);
+  try {
+    return make_fosssim_system<System>(scene);
+  } catch (const Error& e) {
+    throw Error(message(path.string(), ": ", e.what()));
+  }
+}
+
+/// @brief Every format load_scene() knows; a new format is one more entry here.
 template <class System>
 const auto& scene_formats() {
-  static const std::array<SceneFormat<System>, 1> formats = {{
+  static const std::array<SceneFormat<System>, 2> formats = {{
       {".json", "JSON+OBJ scene", &load_json_scene<System>},
+      {".xml", "FOSSSim XML scene", &load_fosssim_xml_scene<System>},
   }};
   return formats;
 }
@@ -50,7 +63,10 @@ const auto& scene_formats() {
 }  // namespace detail
 
 /// @brief Loads a scene file into a system, the format chosen by the extension (any case):
-/// `.json` is the assignment's JSON+OBJ format (read_json_scene(), then make_system()).
+/// `.json` is the assignment's JSON+OBJ format (read_json_scene(), then make_system()); `.xml` is
+/// FOSSSim's 2D XML format (read_fosssim_scene(), then make_fosssim_system(): the system carries
+/// the scene's gravity, attraction and drag as force terms). The XML scene's integrator, time step
+/// and duration are not part of a system: read them with read_fosssim_scene().
 /// @tparam System a MassSpringSystem<Scalar, Storage>
 /// @param[in] path  the scene file
 /// @throws Error naming the path: for an unsupported extension (listing the supported ones), and
