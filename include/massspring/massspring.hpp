@@ -3,9 +3,19 @@
 /// @brief The core of massspring: systems, storage, integrators, scene descriptions and generators.
 /// Needs Eigen only. Scene files (JSON, OBJ) are in massspring/io.hpp.
 
+#include "massspring/diagnostics/energy.hpp"
 #include "massspring/error.hpp"
+#include "massspring/forces/evaluate.hpp"
+#include "massspring/forces/force_term.hpp"
+#include "massspring/forces/gravitational_attraction.hpp"
+#include "massspring/forces/gravity.hpp"
+#include "massspring/forces/linear_drag.hpp"
+#include "massspring/forces/springs.hpp"
+#include "massspring/integrators/backward_euler.hpp"
 #include "massspring/integrators/fast_mass_spring.hpp"
+#include "massspring/integrators/forward_euler.hpp"
 #include "massspring/integrators/step_report.hpp"
+#include "massspring/integrators/symplectic_euler.hpp"
 #include "massspring/scene/chain.hpp"
 #include "massspring/scene/cloth.hpp"
 #include "massspring/scene/face_springs.hpp"
@@ -13,6 +23,7 @@
 #include "massspring/scene/net.hpp"
 #include "massspring/scene/scene_description.hpp"
 #include "massspring/scene/voronoi_masses.hpp"
+#include "massspring/storage/linear_solver.hpp"
 #include "massspring/storage/storage.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"

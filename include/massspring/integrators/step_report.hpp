@@ -18,6 +18,9 @@ struct StepReport {
   /// @brief The objective at the final iterate [J] (local-global: E of DESIGN.md, up to a constant
   /// that does not depend on the iterate). NaN when the integrator has none.
   double energy = std::numeric_limits<double>::quiet_NaN();
+  /// @brief Newton-type integrators: the largest force imbalance [N] at the start of the last
+  /// iteration, max |F(x) - M (x - x^t - h v^t) / h^2|. NaN when the integrator has none.
+  double residual = std::numeric_limits<double>::quiet_NaN();
   /// @brief True when the step stopped because its tolerance was met (never when the tolerance is
   /// 0).
   bool converged = false;

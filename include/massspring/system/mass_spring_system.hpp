@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "massspring/error.hpp"
+#include "massspring/forces/force_term.hpp"
 #include "massspring/storage/storage.hpp"
 #include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
@@ -143,6 +144,7 @@ class MassSpringSystem {
     detail::require_rows("damping", damping.size(), num_springs(), "spring");
     detail::require_positive("spring", "damping", damping, false);
     damping_ = damping.template cast<Scalar>();
+    damped_ = (damping_.array() != 0).any();
   }
 
   // ---- pins --------------------------------------------------------------------------------
@@ -232,8 +234,43 @@ class MassSpringSystem {
     velocities_ = velocities.template cast<Scalar>();
   }
 
+  // ---- force terms beyond the springs --------------------------------------------------------
+
+  /// @brief Adds a force term (Gravity, ConstantForce, LinearDrag, GravitationalAttraction, or a
+  /// type of your own: see forces/force_term.hpp). The system's own springs (Hooke, and damping
+  /// where b > 0) are always applied and are not in this list. New revision (FastMassSpring folds
+  /// linear drag into its matrix).
+  /// @return the term's index in forces().
+  template <class Term>
+  int add_force(Term term) {
+    if constexpr (detail::has_max_index<Term>::value) {
+      const int top = term.max_index();
+      if (top >= num_points())
+        throw Error(detail::message(detail::term_name(term), ": point index ", top,
+                                    " out of range [0, ", num_points(), ")"));
+    }
+    const int k = forces_.add(std::move(term));
+    touch();
+    return k;
+  }
+  /// @brief The force terms added with add_force().
+  [[nodiscard]] const ForceSet<Scalar>& forces() const { return forces_; }
+  /// @brief Removes every added force term (the springs stay). New revision.
+  void clear_forces() {
+    forces_.clear();
+    touch();
+  }
+  /// @brief True when some spring has damping b > 0.
+  [[nodiscard]] bool has_spring_damping() const { return damped_; }
+  /// @brief The context force terms read: this system's model at positions x, velocities v.
+  [[nodiscard]] ForceContext<Scalar> force_context(const PointsType& x, const PointsType& v,
+                                                   bool definite = false) const {
+    return {x, v, masses_, springs_, stiffness_, rest_lengths_, damping_, definite};
+  }
+
   /// @brief Identifies the model Q is built from: it changes, to a value no system had before,
-  /// whenever masses, stiffness, springs or the pinned set change. Copies share it.
+  /// whenever masses, stiffness, springs, the pinned set or the force terms change. Copies share
+  /// it.
   [[nodiscard]] std::uint64_t revision() const { return revision_; }
 
   // ---- matrices (built from triplets, in the Storage's matrix type) --------------------------
@@ -306,6 +343,7 @@ class MassSpringSystem {
       rest_lengths_(e) =
           (rest_positions_.row(springs_(e, 0)) - rest_positions_.row(springs_(e, 1))).norm();
     damping_ = VectorType::Zero(m);
+    damped_ = false;
     masses_ = VectorType::Ones(n);
     stiffness_ = VectorType::Zero(m);
     touch();
@@ -345,6 +383,8 @@ class MassSpringSystem {
   Edges springs_ = Edges(0, 2);
   VectorType masses_, stiffness_, rest_lengths_, damping_;
   std::vector<int> pinned_;
+  ForceSet<Scalar> forces_;
+  bool damped_ = false;
   PointsType pin_targets_ = PointsType(0, 3);
   PointsType positions_ = PointsType(0, 3);
   PointsType velocities_ = PointsType(0, 3);

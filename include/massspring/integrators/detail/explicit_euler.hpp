@@ -1,0 +1,71 @@
+#pragma once
+/// @file
+/// @brief The shared machinery of ForwardEuler and SymplecticEuler.
+
+#include <Eigen/Core>
+
+#include "massspring/error.hpp"
+#include "massspring/forces/evaluate.hpp"
+#include "massspring/integrators/step_report.hpp"
+#include "massspring/system/detail/validate.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring::detail {
+
+/// @brief Holds the work arrays of an explicit step and commits its result.
+template <class System>
+class ExplicitStepper {
+ public:
+  using Scalar = typename System::Scalar;
+  using PointsType = typename System::PointsType;
+
+  void precompute(const System& system, Scalar dt, const char* who) {
+    require_number(who, "dt", double(dt), true);
+    dt_ = dt;
+    n_ = system.num_points();
+    x_.setZero(n_, 3);
+    v_.setZero(n_, 3);
+    f_.setZero(n_, 3);
+    inverse_mass_ = system.masses().cwiseInverse();
+    revision_ = system.revision();
+    ready_ = true;
+  }
+
+  void check(const System& system, const char* who) {
+    if (!ready_) throw Error(message(who, ": step() before precompute()"));
+    if (system.num_points() != n_)
+      throw Error(message(who, ": the system has ", system.num_points(),
+                          " points, precompute() saw ", n_, "; call precompute() again"));
+    if (system.revision() != revision_) {
+      inverse_mass_ = system.masses().cwiseInverse();  // same size: no allocation
+      revision_ = system.revision();
+    }
+  }
+
+  /// @brief Pins, finiteness check, commit. x_ and v_ hold the candidate state.
+  StepReport commit(System& system) {
+    const PointsType& x0 = system.positions();
+    const auto& pinned = system.pinned();
+    for (std::size_t r = 0; r < pinned.size(); ++r) {
+      const int i = pinned[r];
+      x_.row(i) = system.pin_targets().row(Eigen::Index(r));
+      v_.row(i) = (x_.row(i) - x0.row(i)) / dt_;
+    }
+    StepReport report;
+    report.finite = x_.allFinite() && v_.allFinite();
+    if (report.finite) {
+      system.positions() = x_;
+      system.velocities() = v_;
+    }
+    return report;
+  }
+
+  Scalar dt_ = 0;
+  int n_ = 0;
+  bool ready_ = false;
+  std::uint64_t revision_ = 0;
+  PointsType x_, v_, f_;
+  Vector<Scalar> inverse_mass_;
+};
+
+}  // namespace massspring::detail

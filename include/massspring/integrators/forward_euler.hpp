@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// @brief ForwardEuler: explicit Euler, x' = x + h v, v' = v + h M^-1 F(x, v).
+
+#include "massspring/integrators/detail/explicit_euler.hpp"
+
+namespace massspring {
+
+/// @brief Explicit (forward) Euler. First order; unstable for stiff springs beyond
+/// h ~ 2 / omega_max, and it adds energy to orbits and oscillators at every step.
+///
+/// Pinned points sit at their targets (velocity (target - x) / h). step() allocates nothing.
+/// @tparam System a MassSpringSystem<Scalar, Storage> (the storage is not used: no matrices)
+template <class System>
+class ForwardEuler {
+ public:
+  using Scalar = typename System::Scalar;
+
+  /// @brief Sets the time step h [s] (finite, > 0) and sizes the work arrays for the system.
+  void precompute(const System& system, Scalar dt) { s_.precompute(system, dt, "ForwardEuler"); }
+
+  /// @brief One step; a non-finite result leaves the system unchanged (report.finite false).
+  StepReport step(System& system) {
+    s_.check(system, "ForwardEuler");
+    const auto& x = system.positions();
+    const auto& v = system.velocities();
+    total_force(system, x, v, s_.f_);
+    s_.x_ = x + s_.dt_ * v;
+    s_.v_ = v + s_.dt_ * (s_.f_.array().colwise() * s_.inverse_mass_.array()).matrix();
+    return s_.commit(system);
+  }
+
+  /// @brief The time step [s].
+  [[nodiscard]] Scalar dt() const { return s_.dt_; }
+
+ private:
+  detail::ExplicitStepper<System> s_;
+};
+
+}  // namespace massspring

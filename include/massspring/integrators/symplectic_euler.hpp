@@ -1,0 +1,41 @@
+#pragma once
+/// @file
+/// @brief SymplecticEuler: v' = v + h M^-1 F(x, v), then x' = x + h v'.
+
+#include "massspring/integrators/detail/explicit_euler.hpp"
+
+namespace massspring {
+
+/// @brief Symplectic (semi-implicit) Euler: velocities first, then positions with the new
+/// velocities. First order, explicit (same stability limit as ForwardEuler for springs), but for
+/// conservative forces it keeps the energy bounded instead of letting it grow: orbits stay
+/// closed.
+///
+/// Pinned points sit at their targets (velocity (target - x) / h). step() allocates nothing.
+template <class System>
+class SymplecticEuler {
+ public:
+  using Scalar = typename System::Scalar;
+
+  /// @brief Sets the time step h [s] (finite, > 0) and sizes the work arrays for the system.
+  void precompute(const System& system, Scalar dt) { s_.precompute(system, dt, "SymplecticEuler"); }
+
+  /// @brief One step; a non-finite result leaves the system unchanged (report.finite false).
+  StepReport step(System& system) {
+    s_.check(system, "SymplecticEuler");
+    const auto& x = system.positions();
+    const auto& v = system.velocities();
+    total_force(system, x, v, s_.f_);
+    s_.v_ = v + s_.dt_ * (s_.f_.array().colwise() * s_.inverse_mass_.array()).matrix();
+    s_.x_ = x + s_.dt_ * s_.v_;
+    return s_.commit(system);
+  }
+
+  /// @brief The time step [s].
+  [[nodiscard]] Scalar dt() const { return s_.dt_; }
+
+ private:
+  detail::ExplicitStepper<System> s_;
+};
+
+}  // namespace massspring

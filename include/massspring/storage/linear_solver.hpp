@@ -1,0 +1,152 @@
+#pragma once
+/// @file
+/// @brief LinearSolver<Storage, Scalar>: the general linear solve implicit integrators need for
+/// their 3n x 3n systems A dx = b, through the storage policy: Cholesky first, a pivoting fallback
+/// when A is indefinite or not symmetric.
+///
+/// - Dense: Eigen::LLT; when it fails, Eigen::LDLT (symmetric indefinite, pivoting); for a
+///   non-symmetric A, Eigen::PartialPivLU.
+/// - Sparse: Eigen::SimplicialLLT (AMD ordering, pattern analysed once); when it fails or A is not
+///   symmetric, Eigen::SparseLU (COLAMD ordering).
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <limits>
+
+#include "massspring/storage/tags.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring {
+
+/// @brief Which factorisation the last factorize() used.
+enum class LinearSolverPath {
+  None,        ///< nothing factorised yet, or the factorisation failed
+  Cholesky,    ///< A was symmetric positive definite
+  Indefinite,  ///< Cholesky failed: the symmetric indefinite fallback (Dense LDLT, Sparse LU)
+  General,     ///< A was declared not symmetric: LU
+};
+
+template <class Storage, class Scalar>
+class LinearSolver;
+
+/// @brief Dense: LLT, then LDLT, or PartialPivLU for non-symmetric matrices.
+template <class Scalar>
+class LinearSolver<Dense, Scalar> {
+ public:
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  /// @brief Prepares for matrices of A's size (allocates the factor storage).
+  void analyze(const Matrix& a) {
+    llt_ = Eigen::LLT<Matrix>(a.rows());
+    ldlt_ = Eigen::LDLT<Matrix>(a.rows());
+    lu_ = Eigen::PartialPivLU<Matrix>(a.rows());
+  }
+  /// @brief Factorises A. @return false when no factorisation succeeded.
+  bool factorize(const Matrix& a, bool symmetric) {
+    path_ = LinearSolverPath::None;
+    if (!symmetric) {
+      lu_.compute(a);
+      const bool ok = lu_.matrixLU().diagonal().array().abs().minCoeff() > 0;
+      if (ok) path_ = LinearSolverPath::General;
+      return ok;
+    }
+    llt_.compute(a);
+    if (llt_.info() == Eigen::Success) {
+      path_ = LinearSolverPath::Cholesky;
+      return true;
+    }
+    ldlt_.compute(a);
+    if (ldlt_.info() == Eigen::Success && ldlt_.vectorD().array().abs().minCoeff() > 0) {
+      path_ = LinearSolverPath::Indefinite;
+      return true;
+    }
+    return false;
+  }
+  /// @brief x = A^-1 b after a successful factorize().
+  template <class B, class X>
+  void solve(const B& b, X& x) const {
+    switch (path_) {
+      case LinearSolverPath::Cholesky:
+        x = llt_.solve(b);
+        break;
+      case LinearSolverPath::Indefinite:
+        x = ldlt_.solve(b);
+        break;
+      case LinearSolverPath::General:
+        x = lu_.solve(b);
+        break;
+      case LinearSolverPath::None:
+        x.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+        break;
+    }
+  }
+  [[nodiscard]] LinearSolverPath path() const { return path_; }
+
+ private:
+  Eigen::LLT<Matrix> llt_;
+  Eigen::LDLT<Matrix> ldlt_;
+  Eigen::PartialPivLU<Matrix> lu_;
+  LinearSolverPath path_ = LinearSolverPath::None;
+};
+
+/// @brief Sparse: SimplicialLLT (pattern analysed once), SparseLU as the fallback.
+template <class Scalar>
+class LinearSolver<Sparse, Scalar> {
+ public:
+  using Matrix = Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int>;
+
+  /// @brief Symbolic analysis of A's pattern; call again when the pattern changes.
+  void analyze(const Matrix& a) {
+    llt_.analyzePattern(a);
+    lu_analyzed_ = false;
+  }
+  /// @brief Factorises A (same pattern as analysed). @return false when nothing succeeded.
+  bool factorize(const Matrix& a, bool symmetric) {
+    path_ = LinearSolverPath::None;
+    if (symmetric) {
+      llt_.factorize(a);
+      if (llt_.info() == Eigen::Success) {
+        path_ = LinearSolverPath::Cholesky;
+        return true;
+      }
+    }
+    if (!lu_analyzed_) {
+      lu_.analyzePattern(a);
+      lu_analyzed_ = true;
+    }
+    lu_.factorize(a);
+    if (lu_.info() != Eigen::Success) return false;
+    path_ = symmetric ? LinearSolverPath::Indefinite : LinearSolverPath::General;
+    return true;
+  }
+  /// @brief x = A^-1 b after a successful factorize().
+  template <class B, class X>
+  void solve(const B& b, X& x) {
+    switch (path_) {
+      case LinearSolverPath::Cholesky:
+        x = llt_.solve(b);
+        break;
+      case LinearSolverPath::Indefinite:
+      case LinearSolverPath::General:
+        x = lu_.solve(b);
+        break;
+      case LinearSolverPath::None:
+        x.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+        break;
+    }
+  }
+  [[nodiscard]] LinearSolverPath path() const { return path_; }
+
+ private:
+  Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> llt_;
+  Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu_;
+  bool lu_analyzed_ = false;
+  LinearSolverPath path_ = LinearSolverPath::None;
+};
+
+}  // namespace massspring
