@@ -1,38 +1,50 @@
-// massspring-simulate: runs a scene (a JSON+OBJ file or a generated one) with the local-global
-// solver, writes OBJ frames and a CSV trajectory, and prints the time per frame.
+// massspring-simulate: runs a scene (a JSON+OBJ file, a FOSSSim XML file or a generated one),
+// writes OBJ frames and a CSV trajectory, and prints the time per step.
 //
 //   massspring-simulate examples/scenes/flag.json --frames 300 --out frames --csv traj.csv
 //   massspring-simulate --generate cloth:60x50 --gravity 0,-9.8,0
 //   massspring-simulate flag.json --gravity 0,0,0 --force 0,-9.8,0 --pins penalty
 //       (the assignment's conventions, for its own scenes)
+//   massspring-simulate examples/scenes/orbit.xml --integrator forward-euler --every 10 --out f
+//       (an XML scene runs with the integrator it names, its dt, for its duration, unless the
+//        options say otherwise)
 //
 // Exit status: 0 on success, 1 for invalid input, 2 when a step diverged (the frames written so
 // far are kept).
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <massspring/io.hpp>
 #include <massspring/massspring.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
 
 namespace fs = std::filesystem;
+using massspring::Edges;
 using massspring::Error;
 
 struct Config {
-  std::string scene;     // a .json scene file, or empty
+  std::string scene;     // a .json or .xml scene file, or empty
   std::string generate;  // cloth[:CxR], chain[:N], net[:CxR], or empty
-  int frames = 300;
-  double dt = 1.0 / 30;
+  int frames = 300;      // XML scenes: ceil(duration / dt) unless given
+  bool frames_given = false;
+  double dt = 1.0 / 30;  // XML scenes: the scene's unless given
+  bool dt_given = false;
+  std::string integrator;  // empty: the XML scene's, else fast-mass-spring
+  double shrink = 0;       // rest lengths l0(t) = l0(0) exp(-shrink t)
   int iterations = 50;
   double tolerance = 0;
   std::string pins = "exact";
@@ -121,106 +133,227 @@ double percentile(std::vector<double> v, double p) {
   return v[lo] + (at - double(lo)) * (v[hi] - v[lo]);
 }
 
+// What a run needs besides the options: the system, what to draw, the step and the step count.
 template <class System>
-int run(const Config& c, const massspring::SceneDescription<double>& scene,
-        const std::string& name) {
-  using Scalar = typename System::Scalar;
-  System system = massspring::make_system<System>(scene);
-  massspring::FastMassSpring<System> solver;
-  solver.options.iterations = c.iterations;
-  solver.options.tolerance = Scalar(c.tolerance);
-  solver.options.pins =
-      c.pins == "penalty" ? massspring::PinMode::Penalty : massspring::PinMode::Exact;
-  solver.options.penalty_weight = Scalar(c.penalty_weight);
-  for (int k = 0; k < 3; ++k) {
-    solver.options.external_force(k) = Scalar(c.force[std::size_t(k)]);
-    solver.options.gravity(k) = Scalar(c.gravity[std::size_t(k)]);
-  }
-  if (std::is_same_v<Scalar, float> && solver.options.pins == massspring::PinMode::Penalty)
-    std::cerr << "massspring-simulate: warning: penalty pins (w = " << c.penalty_weight
-              << ") in float lose the rest of Q to rounding; use --pins exact\n";
+struct Setup {
+  System system;
+  std::vector<std::vector<int>> faces;  // drawn in the OBJ frames
+  Edges edges;                          // drawn in the OBJ frames (XML: every edge, springs or not)
+  double dt = 0;
+  int steps = 0;
+  std::string integrator;  // forward-euler, symplectic-euler, backward-euler, ...
+  std::string name;
+  bool from_xml = false;
+  massspring::Vector3<double> xml_gravity = massspring::Vector3<double>::Zero();
+};
 
+const char* const kIntegrators[] = {"forward-euler", "symplectic-euler", "backward-euler",
+                                    "linearized-backward-euler", "fast-mass-spring"};
+
+// FOSSSim's integrator names -> ours.
+std::string our_integrator(massspring::io::FosssimIntegrator i) {
+  using massspring::io::FosssimIntegrator;
+  switch (i) {
+    case FosssimIntegrator::ExplicitEuler:
+      return "forward-euler";
+    case FosssimIntegrator::SymplecticEuler:
+      return "symplectic-euler";
+    case FosssimIntegrator::LinearizedImplicitEuler:
+      return "linearized-backward-euler";
+    case FosssimIntegrator::ImplicitEuler:
+      return "backward-euler";
+  }
+  return "symplectic-euler";
+}
+
+// The step loop shared by every integrator: time each step, write frames, stop on divergence.
+template <class System, class Solver>
+int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& what) {
+  using Scalar = typename System::Scalar;
+  System& system = s.system;
   const auto t0 = std::chrono::steady_clock::now();
-  solver.precompute(system, Scalar(c.dt));
+  solver.precompute(system, Scalar(s.dt));
   const double precompute_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!c.quiet)
     std::printf(
-        "%s: %d points, %d springs, %d pinned; %s, %s, %s pins; precompute %.2f ms "
-        "(factor %lld nonzeros)\n",
-        name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
-        c.storage.c_str(), c.precision.c_str(), c.pins.c_str(), precompute_ms,
-        static_cast<long long>(solver.factor_nonzeros()));
+        "%s: %d points, %d springs, %d pinned, %d force terms; %s, dt %g s, %d steps (%g s); %s, "
+        "%s; precompute %.2f ms\n",
+        s.name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
+        system.forces().size(), what.c_str(), s.dt, s.steps, s.dt * s.steps, c.storage.c_str(),
+        c.precision.c_str(), precompute_ms);
 
   if (!c.out.empty()) fs::create_directories(c.out);
   std::optional<TrajectoryCsv> csv;
   if (!c.csv.empty()) csv.emplace(c.csv);
   auto write_frame = [&](int frame) {
-    if (frame % c.every != 0 && frame != c.frames) return;
+    if (frame % c.every != 0 && frame != s.steps) return;
     if (!c.out.empty()) {
       char file[32];
       std::snprintf(file, sizeof file, "frame_%05d.obj", frame);
-      massspring::io::write_obj(fs::path(c.out) / file, system.positions(), scene.faces,
-                                scene.edges);
+      massspring::io::write_obj(fs::path(c.out) / file, system.positions(), s.faces, s.edges);
     }
     if (csv) csv->write(frame, system);
   };
   write_frame(0);
 
+  const massspring::Vector<Scalar> rest = system.rest_lengths();
   std::vector<double> ms;
-  ms.reserve(std::size_t(c.frames));
+  ms.reserve(std::size_t(s.steps));
   long long iterations = 0;
   int diverged_at = -1;
-  for (int frame = 1; frame <= c.frames; ++frame) {
+  for (int step = 1; step <= s.steps; ++step) {
+    if (c.shrink > 0)  // free: rest lengths do not change any matrix
+      system.set_rest_lengths(rest * Scalar(std::exp(-c.shrink * s.dt * (step - 1))));
     const auto start = std::chrono::steady_clock::now();
     const massspring::StepReport report = solver.step(system);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                      .count());
     iterations += report.iterations;
     if (!report.ok()) {
-      diverged_at = frame;
+      diverged_at = step;
       break;
     }
-    write_frame(frame);
+    write_frame(step);
   }
   if (csv) csv->close();
 
   const int done = int(ms.size()) - (diverged_at > 0 ? 1 : 0);
   if (!c.quiet)
-    std::printf("%d frames, %.2f iterations per frame: median %.3f ms per frame "
+    std::printf("%d steps, %.2f iterations per step: median %.3f ms per step "
                 "(mean %.3f, p10 %.3f, p90 %.3f, max %.3f)\n",
                 done, ms.empty() ? 0.0 : double(iterations) / double(ms.size()),
                 percentile(ms, 0.5), ms.empty() ? 0.0 : [&] {
-                  double s = 0;
-                  for (double x : ms) s += x;
-                  return s / double(ms.size());
+                  double sum = 0;
+                  for (double x : ms) sum += x;
+                  return sum / double(ms.size());
                 }(),
                 percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
   else
     std::printf("%.3f\n", percentile(ms, 0.5));
   if (diverged_at > 0) {
     std::fprintf(stderr,
-                 "massspring-simulate: frame %d: the step produced a non-finite state; stopped "
-                 "with the last finite state (frames 0..%d written)\n",
+                 "massspring-simulate: step %d: the step produced a non-finite state; stopped "
+                 "with the last finite state (steps 0..%d written)\n",
                  diverged_at, diverged_at - 1);
     return 2;
   }
   return 0;
 }
 
+template <class System>
+int run(const Config& c, Setup<System>& s) {
+  using Scalar = typename System::Scalar;
+  System& system = s.system;
+  massspring::Vector3<Scalar> gravity, force;
+  for (int k = 0; k < 3; ++k) {
+    gravity(k) = Scalar(c.gravity[std::size_t(k)]);
+    force(k) = Scalar(c.force[std::size_t(k)]);
+  }
+  if (s.integrator == "fast-mass-spring") {
+    // FastMassSpring takes gravity and a constant force from its options, not from the system's
+    // force terms: an XML scene's gravity moves there; attraction and drag it cannot take.
+    if (s.from_xml) {
+      for (const auto& term : system.forces())
+        if (std::string(term->name) != "gravity")
+          throw Error(s.name + ": fast-mass-spring does not take the scene's " + term->name +
+                      " (choose another --integrator)");
+      system.clear_forces();
+      gravity = s.xml_gravity.template cast<Scalar>();
+    }
+    massspring::FastMassSpring<System> solver;
+    solver.options.iterations = c.iterations;
+    solver.options.tolerance = Scalar(c.tolerance);
+    solver.options.pins =
+        c.pins == "penalty" ? massspring::PinMode::Penalty : massspring::PinMode::Exact;
+    solver.options.penalty_weight = Scalar(c.penalty_weight);
+    solver.options.gravity = gravity;
+    solver.options.external_force = force;
+    if (std::is_same_v<Scalar, float> && solver.options.pins == massspring::PinMode::Penalty)
+      std::cerr << "massspring-simulate: warning: penalty pins (w = " << c.penalty_weight
+                << ") in float lose the rest of Q to rounding; use --pins exact\n";
+    return loop(c, s, solver, "fast-mass-spring (" + c.pins + " pins)");
+  }
+  // The other integrators read every force from the system: JSON and generated scenes get the
+  // --gravity and --force options as force terms (an XML scene has its own).
+  if (!s.from_xml) {
+    if (!gravity.isZero()) system.add_force(massspring::Gravity<Scalar>(gravity));
+    if (!force.isZero()) system.add_force(massspring::ConstantForce<Scalar>(force));
+  }
+  if (s.integrator == "forward-euler") {
+    massspring::ForwardEuler<System> solver;
+    return loop(c, s, solver, s.integrator);
+  }
+  if (s.integrator == "symplectic-euler") {
+    massspring::SymplecticEuler<System> solver;
+    return loop(c, s, solver, s.integrator);
+  }
+  massspring::BackwardEuler<System> solver;
+  solver.options.mode = s.integrator == "backward-euler"
+                            ? massspring::BackwardEulerMode::Newton
+                            : massspring::BackwardEulerMode::Linearized;
+  return loop(c, s, solver, s.integrator);
+}
+
+template <class System>
+int run_scene(const Config& c) {
+  Setup<System> s{};
+  s.name = c.scene.empty() ? c.generate : c.scene;
+  fs::path path = c.scene;
+  std::string extension = path.extension().string();
+  for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (!c.scene.empty() && extension == ".xml") {
+    const massspring::io::FosssimScene scene = massspring::io::read_fosssim_scene(path);
+    s.system = massspring::io::make_fosssim_system<System>(scene);
+    s.edges = scene.edges;
+    s.from_xml = true;
+    if (scene.gravity) s.xml_gravity = *scene.gravity;
+    s.dt = c.dt_given ? c.dt : scene.dt;
+    const long long steps = c.frames_given ? c.frames : scene.steps_for(s.dt);
+    if (steps > 100000000) throw Error(c.scene + ": more than 10^8 steps; give --frames or --dt");
+    s.steps = int(steps);
+    s.integrator = c.integrator.empty() ? our_integrator(scene.integrator) : c.integrator;
+  } else {
+    const massspring::SceneDescription<double> scene =
+        c.scene.empty() ? generated(c.generate) : massspring::io::read_json_scene(c.scene);
+    s.system = massspring::make_system<System>(scene);
+    s.faces = scene.faces;
+    s.edges = scene.edges;
+    s.dt = c.dt;
+    s.steps = c.frames;
+    s.integrator = c.integrator.empty() ? "fast-mass-spring" : c.integrator;
+  }
+  return run(c, s);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Config c;
-  CLI::App app{"Simulate a mass-spring scene with the local-global solver (Liu et al. 2013)."};
-  app.add_option("scene", c.scene, "Scene file (.json + .obj, the assignment's format)");
+  CLI::App app{
+      "Simulate a mass-spring scene: local-global (Liu et al. 2013), forward, symplectic or "
+      "backward Euler."};
+  app.add_option("scene", c.scene,
+                 "Scene file: .json (+ .obj, the assignment's format) or .xml (FOSSSim's)");
   app.add_option("--generate", c.generate,
                  "Generate the scene instead: cloth[:COLSxROWS], chain[:POINTS], net[:COLSxROWS]");
-  app.add_option("--frames", c.frames, "Frames (steps) to simulate")
+  auto* frames = app.add_option("--frames", c.frames,
+                                "Steps to simulate (XML scenes: ceil(duration / dt) by default)")
+                     ->check(CLI::NonNegativeNumber)
+                     ->capture_default_str();
+  auto* dt = app.add_option("--dt", c.dt, "Time step [s] (XML scenes: the scene's by default)")
+                 ->check(CLI::PositiveNumber)
+                 ->capture_default_str();
+  app.add_option("--integrator", c.integrator,
+                 "Integrator (default: the XML scene's; fast-mass-spring for other scenes)")
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(kIntegrators), std::end(kIntegrators))));
+  app.add_option("--shrink", c.shrink,
+                 "Shrink every rest length as l0(t) = l0(0) exp(-RATE t) [1/s] (0: never)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  app.add_option("--dt", c.dt, "Time step [s]")->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--iterations", c.iterations, "Most local-global iterations per step")
+  app.add_option("--iterations", c.iterations,
+                 "Most local-global iterations per step (fast-mass-spring)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--tolerance", c.tolerance,
@@ -233,11 +366,12 @@ int main(int argc, char** argv) {
   app.add_option("--penalty-weight", c.penalty_weight, "Penalty weight w for --pins penalty [N/m]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  app.add_option("--force", c.force, "Force on every point [N], FX,FY,FZ")
+  app.add_option("--force", c.force, "Force on every point [N], FX,FY,FZ (not XML scenes)")
       ->delimiter(',')
       ->expected(3)
       ->capture_default_str();
-  app.add_option("--gravity", c.gravity, "Acceleration of every point [m/s^2], GX,GY,GZ")
+  app.add_option("--gravity", c.gravity,
+                 "Acceleration of every point [m/s^2], GX,GY,GZ (XML scenes: the scene's)")
       ->delimiter(',')
       ->expected(3)
       ->capture_default_str();
@@ -254,6 +388,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--quiet", c.quiet, "Print only the median milliseconds per frame");
   CLI11_PARSE(app, argc, argv);
+  c.frames_given = frames->count() > 0;
+  c.dt_given = dt->count() > 0;
 
   try {
     if (c.scene.empty() == c.generate.empty())
@@ -261,17 +397,14 @@ int main(int argc, char** argv) {
     for (const auto& v : {c.force, c.gravity})
       for (double x : v)
         if (!std::isfinite(x)) throw Error("--force and --gravity must be finite");
-    const massspring::SceneDescription<double> scene =
-        c.scene.empty() ? generated(c.generate) : massspring::io::read_json_scene(c.scene);
-    const std::string name = c.scene.empty() ? c.generate : c.scene;
     using massspring::Dense;
     using massspring::MassSpringSystem;
     using massspring::Sparse;
     const bool dense = c.storage == "dense", single = c.precision == "float";
-    if (dense && single) return run<MassSpringSystem<float, Dense>>(c, scene, name);
-    if (dense) return run<MassSpringSystem<double, Dense>>(c, scene, name);
-    if (single) return run<MassSpringSystem<float, Sparse>>(c, scene, name);
-    return run<MassSpringSystem<double, Sparse>>(c, scene, name);
+    if (dense && single) return run_scene<MassSpringSystem<float, Dense>>(c);
+    if (dense) return run_scene<MassSpringSystem<double, Dense>>(c);
+    if (single) return run_scene<MassSpringSystem<float, Sparse>>(c);
+    return run_scene<MassSpringSystem<double, Sparse>>(c);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "massspring-simulate: %s\n", e.what());
     return 1;
