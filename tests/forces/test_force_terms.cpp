@@ -88,9 +88,18 @@ Points force_of(const Term& t, const ForceContext<double>& c) {
   return f;
 }
 
-// Checks dF/dx and dF/dv of a term against central differences: the error of a central
-// difference is O(h^2 |F'''|), about 1e-10 relative here with h = 1e-5; 1e-6 leaves room for
-// conditioning of the near-degenerate states but fails for any wrong entry.
+// A finite-difference step relative to the shortest spring: a central difference errs by about
+// (h / l)^2 relative (truncation) plus eps |F| / h (rounding); h = 1e-5 min(1, l_min) keeps both
+// below 1e-9 relative even for the near-coincident pair (l ~ 2e-4).
+double fd_step(const Fixture& fx, const Points& x) {
+  double lmin = 1;
+  for (int s = 0; s < int(fx.e.rows()); ++s)
+    lmin = std::min(lmin, (x.row(fx.e(s, 0)) - x.row(fx.e(s, 1))).norm());
+  return 1e-5 * lmin;
+}
+
+// Checks dF/dx and dF/dv of a term against central differences (see fd_step); 1e-6 relative
+// fails for any wrong entry.
 template <class Term>
 void check_jacobians(const Term& t, const Fixture& fx, const Points& x, const Points& v) {
   const int n = int(x.rows());
@@ -102,9 +111,9 @@ void check_jacobians(const Term& t, const Fixture& fx, const Points& x, const Po
     if constexpr (massspring::detail::has_dfdv<Term, double>::value) t.add_dfdv(c, s);
   });
   const Mat fdx = finite_difference(
-      x, [&](const Points& p) { return force_of(t, fx.context(p, v)); }, 1e-5);
+      x, [&](const Points& p) { return force_of(t, fx.context(p, v)); }, fd_step(fx, x));
   const Mat fdv = finite_difference(
-      v, [&](const Points& p) { return force_of(t, fx.context(x, p)); }, 1e-5);
+      v, [&](const Points& p) { return force_of(t, fx.context(x, p)); }, fd_step(fx, x));
   const double sx = std::max(1.0, fdx.cwiseAbs().maxCoeff());
   const double sv = std::max(1.0, fdv.cwiseAbs().maxCoeff());
   CHECK((jx - fdx).cwiseAbs().maxCoeff() / sx < 1e-6);
@@ -118,7 +127,7 @@ void check_energy_gradient(const Term& t, const Fixture& fx, const Points& x) {
   double worst = 0;
   for (int c = 0; c < int(x.size()); ++c) {
     Points p = x, q = x;
-    const double h = 1e-6;
+    const double h = fd_step(fx, x);
     p(c / 3, c % 3) += h;
     q(c / 3, c % 3) -= h;
     const double g = (t.energy(fx.context(p, fx.v0)) - t.energy(fx.context(q, fx.v0))) / (2 * h);

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "massspring/forces/evaluate.hpp"
+#include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

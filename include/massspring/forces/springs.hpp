@@ -49,11 +49,27 @@ struct Springs {
   [[nodiscard]] const char* name() const { return "springs"; }
 
   void add_force(const ForceContext<Scalar>& c, Points<Scalar>& f) const {
-    for (int e = 0; e < int(c.springs.rows()); ++e) {
-      const int i = c.springs(e, 0), j = c.springs(e, 1);
-      const Vector3<Scalar> fi = force_on_i(c, e, i, j);
-      f.row(i) += fi.transpose();
-      f.row(j) -= fi.transpose();
+    // Raw pointers: the compiler cannot prove that writes to f leave the model alone, and would
+    // reload every member of the context per spring.
+    const int m = int(c.springs.rows());
+    const int* ends = c.springs.data();
+    const Scalar* k = c.stiffness.data();
+    const Scalar* l0 = c.rest_lengths.data();
+    const Scalar* x = c.x.data();
+    Scalar* out = f.data();
+    for (int e = 0; e < m; ++e) {
+      const int i = 3 * ends[2 * e], j = 3 * ends[2 * e + 1];
+      const Scalar d0 = x[j] - x[i], d1 = x[j + 1] - x[i + 1], d2 = x[j + 2] - x[i + 2];
+      const Scalar l = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+      // k (l - l0) n = k (l - l0) / l d; at l = 0, d = 0 and so is the force (for l0 = 0 it is
+      // k d, continuous through l = 0).
+      const Scalar s = l > 0 ? k[e] * (l - l0[e]) / l : Scalar(0);
+      out[i] += s * d0;
+      out[i + 1] += s * d1;
+      out[i + 2] += s * d2;
+      out[j] -= s * d0;
+      out[j + 1] -= s * d1;
+      out[j + 2] -= s * d2;
     }
   }
   [[nodiscard]] Scalar energy(const ForceContext<Scalar>& c) const {
@@ -84,14 +100,6 @@ struct Springs {
       }
       detail::add_pair_blocks(jac, i, j, block);
     }
-  }
-
- private:
-  static Vector3<Scalar> force_on_i(const ForceContext<Scalar>& c, int e, int i, int j) {
-    const Scalar k = c.stiffness(e), l0 = c.rest_lengths(e);
-    const detail::SpringFrame<Scalar> s(c.x, i, j);
-    if (l0 == 0) return k * s.d;
-    return k * (s.l - l0) * s.n;
   }
 };
 

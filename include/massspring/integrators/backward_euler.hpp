@@ -13,6 +13,7 @@
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/linear_solver.hpp"
 #include "massspring/system/detail/validate.hpp"
+#include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

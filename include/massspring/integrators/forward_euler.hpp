@@ -26,7 +26,7 @@ class ForwardEuler {
     const auto& v = system.velocities();
     total_force(system, x, v, s_.f_);
     s_.x_ = x + s_.dt_ * v;
-    s_.v_ = v + s_.dt_ * (s_.f_.array().colwise() * s_.inverse_mass_.array()).matrix();
+    s_.kick(v);
     return s_.commit(system);
   }
 

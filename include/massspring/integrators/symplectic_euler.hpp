@@ -26,7 +26,7 @@ class SymplecticEuler {
     const auto& x = system.positions();
     const auto& v = system.velocities();
     total_force(system, x, v, s_.f_);
-    s_.v_ = v + s_.dt_ * (s_.f_.array().colwise() * s_.inverse_mass_.array()).matrix();
+    s_.kick(v);
     s_.x_ = x + s_.dt_ * s_.v_;
     return s_.commit(system);
   }
