@@ -1,12 +1,18 @@
 #pragma once
 /// @file
 /// @brief FastMassSpring: the local-global solver of Liu et al. 2013, "Fast Simulation of
-/// Mass-Spring Systems", for one implicit-Euler step per call.
+/// Mass-Spring Systems", for one implicit-Euler step per call, with optional Chebyshev (Wang 2015)
+/// or Anderson (Peng et al. 2018) acceleration.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "massspring/error.hpp"
@@ -23,7 +29,8 @@ enum class PinMode {
   /// sit exactly at their targets. Well conditioned; works in float.
   Exact,
   /// The seed's penalty: Q += w C^T C and the right-hand side += w C^T X_target. Pinned points
-  /// move by about |force| / w. Needs double: in float, w = 1e10 swamps the rest of Q.
+  /// move by about |force| / w. Needs double: in float, w = 1e10 swamps the rest of Q, so
+  /// FastMassSpring<float system> refuses it unless `allow_float_penalty` is set.
   Penalty,
 };
 
@@ -35,11 +42,28 @@ enum class InitialGuess {
   Inertial,
 };
 
+/// @brief How the local-global iterations of a step are combined.
+enum class Acceleration {
+  /// Plain local-global: each iterate is the last one's local and global step. Never increases
+  /// the energy.
+  None,
+  /// Chebyshev semi-iterative acceleration (Wang 2015): after `chebyshev_delay` plain iterations,
+  /// x_{k+1} = omega_{k+1} (gamma (G(x_k) - x_k) + x_k - x_{k-1}) + x_{k-1} with
+  /// omega_{k+1} = 4 / (4 - rho^2 omega_k). Restarted (momentum dropped, back to the plain
+  /// iterate) whenever the energy rises.
+  Chebyshev,
+  /// Anderson acceleration (Peng et al. 2018) of the fixed-point map G (one local-global
+  /// iteration) over the last `anderson_window` iterates; an iterate whose energy is not below the
+  /// last accepted one is replaced by the plain step from that one and the history is cleared.
+  Anderson,
+};
+
 /// @brief Options of FastMassSpring. Changing `pins` or `penalty_weight` makes the next step
 /// factorise again; the others take effect at the next step for free.
 template <class Scalar>
 struct FastMassSpringOptions {
-  /// @brief Most local-global iterations per step (>= 1). Default 50, as the assignment suggests.
+  /// @brief Most local-global iterations (global solves) per step (>= 1). Default 50, as the
+  /// assignment suggests.
   int iterations = 50;
   /// @brief Stop early when the relative energy decrease of an iteration,
   /// (E_{k-1} - E_k) / (E_0 - E_k), is <= tolerance. 0 (the default) runs every iteration.
@@ -55,6 +79,25 @@ struct FastMassSpringOptions {
   Vector3<Scalar> gravity = Vector3<Scalar>::Zero();
   /// @brief Where iterations start (default Current).
   InitialGuess initial_guess = InitialGuess::Current;
+  /// @brief Acceleration of the iterations (default None: plain local-global).
+  Acceleration acceleration = Acceleration::None;
+  /// @brief Chebyshev: spectral radius rho of the plain iteration, in [0, 1). 0 (the default):
+  /// estimated by the solver on the first Chebyshev step after each factorisation, from
+  /// `chebyshev_estimate_iterations` trial iterations (see chebyshev_rho()).
+  Scalar chebyshev_rho = 0;
+  /// @brief Chebyshev: under-relaxation gamma, in (0, 1]. Default 1: the global step is an
+  /// exact solve, so nothing to damp (Wang damps Jacobi sweeps with 0.9).
+  Scalar chebyshev_gamma = 1;
+  /// @brief Chebyshev: plain iterations before the acceleration starts (delayed start S), >= 1.
+  /// Default 5.
+  int chebyshev_delay = 5;
+  /// @brief Chebyshev: trial iterations for estimating rho when `chebyshev_rho` is 0, >= 4.
+  /// Default 100.
+  int chebyshev_estimate_iterations = 100;
+  /// @brief Anderson: how many past iterates the least-squares fit uses, in [1, 16]. Default 5.
+  int anderson_window = 5;
+  /// @brief Allow PinMode::Penalty in float (refused otherwise: see PinMode::Penalty).
+  bool allow_float_penalty = false;
 };
 
 /// @brief Local-global ("fast mass-spring") integrator of Liu et al. 2013.
@@ -70,15 +113,23 @@ struct FastMassSpringOptions {
 /// the system's revision(), the time step or the pin options changed; it allocates nothing
 /// otherwise. A zero-length spring keeps the direction it had at the end of the previous step.
 ///
+/// Inside a step the iterate lives in the factor's row order (the fill-reducing permutation), as a
+/// row-major #rows x 3 array, so that an iteration is one pass over the springs (sorted by row)
+/// scattering k_e d_e into the right-hand side, then one forward and one back substitution in
+/// place: no permutation, no copy of the iterate, no allocation.
+///
 /// @tparam System a MassSpringSystem<Scalar, Storage>
-template <class System>
+/// @tparam Cholesky_ the factorisation of Q: by default the Storage's (SparseCholesky or
+/// DenseCholesky); any type with compute(Matrix), permutation(), solve_in_place(Scalar*),
+/// factor_nonzeros() works (e.g. CholmodCholesky from massspring/storage/cholmod.hpp).
+template <class System, class Cholesky_ = typename System::Traits::Cholesky>
 class FastMassSpring {
  public:
   using Scalar = typename System::Scalar;
   using Storage = typename System::Storage;
   using Traits = typename System::Traits;
   using Matrix = typename Traits::Matrix;
-  using Cholesky = typename Traits::Cholesky;
+  using Cholesky = Cholesky_;
   using Triplet = typename Traits::Triplet;
   using PointsType = Points<Scalar>;
   using Options = FastMassSpringOptions<Scalar>;
@@ -112,40 +163,23 @@ class FastMassSpring {
       report.refactorized = true;
     }
     prepare(system);
-    const int cap = options.iterations;
-    const bool track = options.tolerance > 0;
-    double e0 = 0, e_prev = 0, e_last = 0;
-    for (int k = 0; k < cap; ++k) {
-      const Scalar spring_energy = spring_pass<true>(system);
-      if (track || k == 0 || k == cap - 1) {
-        const double e = double(spring_energy) + double(quadratic_energy(system));
-        if (k == 0) e0 = e;
-        if (track && k > 0) {
-          report.relative_decrease = relative(e_prev - e, e0 - e);
-          if (report.relative_decrease <= double(options.tolerance)) {
-            report.converged = true;
-            break;
-          }
+    Scalar* result = nullptr;
+    switch (options.acceleration) {
+      case Acceleration::None:
+        result = run_plain(report);
+        break;
+      case Acceleration::Chebyshev:
+        if (!(options.chebyshev_rho > 0) && !(rho_estimate_ > 0)) {
+          estimate_rho();
+          prepare(system);
         }
-        e_prev = e;
-        e_last = e;
-      }
-      global_step();
-      ++report.iterations;
+        result = run_chebyshev(report);
+        break;
+      case Acceleration::Anderson:
+        result = run_anderson(report);
+        break;
     }
-    const double e_final = double(spring_pass<false>(system)) + double(quadratic_energy(system));
-    report.energy = e_final;
-    if (!report.converged) report.relative_decrease = relative(e_last - e_final, e0 - e_final);
-
-    // Commit only a finite result: positions and the velocities they imply (which can overflow
-    // even when the positions do not).
-    if (!x_.allFinite() || !((x_ - system.positions()) / dt_).allFinite()) {
-      report.finite = false;
-      return report;
-    }
-    system.velocities() = (x_ - system.positions()) / dt_;
-    system.positions() = x_;
-    return report;
+    return commit(system, result, report);
   }
 
   /// @brief The time step of the last precompute() [s].
@@ -157,8 +191,30 @@ class FastMassSpring {
   [[nodiscard]] const std::vector<int>& free_points() const { return free_; }
   /// @brief Stored entries of the Cholesky factor of Q.
   [[nodiscard]] Eigen::Index factor_nonzeros() const { return llt_.factor_nonzeros(); }
+  /// @brief The factorisation of Q.
+  [[nodiscard]] const Cholesky& factorization() const { return llt_; }
+  /// @brief The rho Chebyshev uses: options.chebyshev_rho when > 0, else the solver's estimate
+  /// (0 until the first Chebyshev step after a factorisation has estimated it).
+  [[nodiscard]] Scalar chebyshev_rho() const {
+    return options.chebyshev_rho > 0 ? options.chebyshev_rho : rho_estimate_;
+  }
+  /// @brief Accelerated iterates replaced by the plain step because the energy rose (Chebyshev
+  /// restarts, Anderson rejections), counted since construction.
+  [[nodiscard]] std::size_t rejections() const { return rejections_; }
 
  private:
+  using Buffer = Vector<Scalar>;
+
+  struct PackedSpring {
+    int a, b;  // rows of the end points in the iterate (factor order; pinned rows after), a <= b
+    Scalar k, r;
+  };
+  struct Coupling {
+    int row;  // iterate row of the free point
+    int pin;  // row of the pinned point in system.pin_targets()
+    Scalar k;
+  };
+
   static double relative(double decrease, double total) {
     return total > 0 ? decrease / total : 0.0;
   }
@@ -174,17 +230,44 @@ class FastMassSpring {
       throw Error(
           detail::message("FastMassSpring: options.penalty_weight must be finite and > 0, got ",
                           options.penalty_weight));
+    if (std::is_same_v<Scalar, float> && options.pins == PinMode::Penalty &&
+        !options.allow_float_penalty)
+      throw Error(detail::message(
+          "FastMassSpring: PinMode::Penalty in float: the penalty weight w = ",
+          options.penalty_weight,
+          " swamps the rest of Q in single precision (about 7 digits), so the free points' "
+          "equations are lost to rounding; use PinMode::Exact (the default), double, or set "
+          "options.allow_float_penalty to accept it"));
     if (!options.external_force.allFinite())
       throw Error("FastMassSpring: options.external_force must be finite");
     if (!options.gravity.allFinite()) throw Error("FastMassSpring: options.gravity must be finite");
+    if (!(options.chebyshev_rho >= 0 && options.chebyshev_rho < 1))
+      throw Error(detail::message("FastMassSpring: options.chebyshev_rho must be in [0, 1), got ",
+                                  options.chebyshev_rho));
+    if (!(options.chebyshev_gamma > 0 && options.chebyshev_gamma <= 1))
+      throw Error(detail::message("FastMassSpring: options.chebyshev_gamma must be in (0, 1], got ",
+                                  options.chebyshev_gamma));
+    if (options.chebyshev_delay < 1)
+      throw Error(detail::message("FastMassSpring: options.chebyshev_delay must be >= 1, got ",
+                                  options.chebyshev_delay));
+    if (options.chebyshev_estimate_iterations < 4)
+      throw Error(detail::message(
+          "FastMassSpring: options.chebyshev_estimate_iterations must be >= 4, got ",
+          options.chebyshev_estimate_iterations));
+    if (options.anderson_window < 1 || options.anderson_window > kMaxWindow)
+      throw Error(detail::message("FastMassSpring: options.anderson_window must be in [1, ",
+                                  kMaxWindow, "], got ", options.anderson_window));
   }
 
-  // Q, its factor and every buffer step() uses. The only place that allocates.
+  // ---- precompute -------------------------------------------------------------------------------
+
+  // Q, its factor, the packed springs and every buffer step() uses. The only place that allocates.
   void build(const System& system) {
     n_ = system.num_points();
     pins_ = options.pins;
     weight_ = options.penalty_weight;
     revision_ = system.revision();
+    rho_estimate_ = 0;
     const bool exact = pins_ == PinMode::Exact;
     const int m = system.num_springs();
     const auto& springs = system.springs();
@@ -192,55 +275,99 @@ class FastMassSpring {
     const auto& mass = system.masses();
     const Scalar inv_dt2 = Scalar(1) / (dt_ * dt_);
 
-    // Reduced row of each point; with exact pins, pinned points go to the spare row n_red.
-    std::vector<int> row(std::size_t(n_), 0);
+    // Reduced row (of Q) of each point; with exact pins, pinned points have none.
+    std::vector<int> reduced(std::size_t(n_), -1);
     free_.clear();
     for (int i = 0; i < n_; ++i)
       if (!(exact && system.is_pinned(i))) {
-        row[std::size_t(i)] = int(free_.size());
+        reduced[std::size_t(i)] = int(free_.size());
         free_.push_back(i);
       }
-    n_red_ = int(free_.size());
-    for (int i = 0; i < n_; ++i)
-      if (exact && system.is_pinned(i)) row[std::size_t(i)] = n_red_;
+    nr_ = int(free_.size());
 
     std::vector<Triplet> t;
     t.reserve(std::size_t(4 * m + n_));
-    spring_rows_.resize(m, 2);
-    coupling_.clear();
     for (int e = 0; e < m; ++e) {
-      const int i = springs(e, 0), j = springs(e, 1);
-      const int ri = row[std::size_t(i)], rj = row[std::size_t(j)];
-      spring_rows_(e, 0) = ri;
-      spring_rows_(e, 1) = rj;
-      const bool fi = ri < n_red_, fj = rj < n_red_;
-      if (fi) t.emplace_back(ri, ri, k(e));
-      if (fj) t.emplace_back(rj, rj, k(e));
-      if (fi && fj) {
+      const int ri = reduced[std::size_t(springs(e, 0))], rj = reduced[std::size_t(springs(e, 1))];
+      if (ri >= 0) t.emplace_back(ri, ri, k(e));
+      if (rj >= 0) t.emplace_back(rj, rj, k(e));
+      if (ri >= 0 && rj >= 0) {
         t.emplace_back(ri, rj, -k(e));
         t.emplace_back(rj, ri, -k(e));
       }
-      // -Q_FP X_P: a free point joined to a pinned one is pulled by k x_pinned.
-      if (fi && !fj) coupling_.push_back({ri, system.pin_row(j), k(e)});
-      if (fj && !fi) coupling_.push_back({rj, system.pin_row(i), k(e)});
     }
-    for (int r = 0; r < n_red_; ++r) t.emplace_back(r, r, mass(free_[std::size_t(r)]) * inv_dt2);
+    for (int r = 0; r < nr_; ++r) t.emplace_back(r, r, mass(free_[std::size_t(r)]) * inv_dt2);
     if (!exact)
       for (int p : system.pinned()) t.emplace_back(p, p, weight_);
-    q_ = Traits::from_triplets(n_red_, n_red_, t);
+    q_ = Traits::from_triplets(nr_, nr_, t);
+    std::vector<Triplet>().swap(t);
     if (!llt_.compute(q_))
       throw Error(detail::message("precompute: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
                                   " is not numerically positive definite (dt = ", dt_,
                                   exact ? "" : detail::message(", penalty weight = ", weight_),
                                   ")"));
 
-    x_.resize(n_, 3);
-    inertial_.resize(n_, 3);
-    rhs0_.resize(n_red_ + 1, 3);
-    rhs_.resize(n_red_ + 1, 3);
-    solution_.resize(n_red_, 3);
-    direction_.resize(m, 3);
-    for (int e = 0; e < m; ++e) {
+    // Iterate rows: free points in the factor's order, then (exact pins) the pinned points.
+    const Eigen::VectorXi& perm = llt_.permutation();
+    const int np = exact ? system.num_pinned() : 0;
+    nx_ = nr_ + np;
+    row_.assign(std::size_t(n_), 0);
+    point_.assign(std::size_t(nx_), 0);
+    for (int r = 0; r < nr_; ++r) {
+      row_[std::size_t(free_[std::size_t(r)])] = perm(r);
+      point_[std::size_t(perm(r))] = free_[std::size_t(r)];
+    }
+    for (int p = 0; p < np; ++p) {
+      const int i = system.pinned()[std::size_t(p)];
+      row_[std::size_t(i)] = nr_ + p;
+      point_[std::size_t(nr_ + p)] = i;
+    }
+    penalty_rows_.clear();
+    if (!exact)
+      for (int p : system.pinned()) penalty_rows_.push_back(row_[std::size_t(p)]);
+
+    // Springs grouped by their lower row a (compressed: spring_start_[a] to spring_start_[a + 1]),
+    // sorted by the higher row b within a group. The local step then accumulates row a in
+    // registers and scatters into row b only, with no read-modify-write chain through memory.
+    order_.resize(std::size_t(m));
+    flipped_.clear();
+    flipped_.reserve(std::size_t(m));
+    std::iota(order_.begin(), order_.end(), 0);
+    const auto key = [&](int e) {
+      const int a = row_[std::size_t(springs(e, 0))], b = row_[std::size_t(springs(e, 1))];
+      return std::pair<int, int>(std::min(a, b), std::max(a, b));
+    };
+    std::sort(order_.begin(), order_.end(), [&](int x, int y) { return key(x) < key(y); });
+    springs_.resize(std::size_t(m));
+    spring_start_.assign(std::size_t(nx_ + 1), 0);
+    coupling_.clear();
+    for (int s = 0; s < m; ++s) {
+      const int e = order_[std::size_t(s)];
+      const int i = row_[std::size_t(springs(e, 0))], j = row_[std::size_t(springs(e, 1))];
+      const int a = std::min(i, j), b = std::max(i, j);
+      ++spring_start_[std::size_t(a) + 1];
+      // Stored as (a, b): d = x_a - x_b, which flips the sign of the spring's direction when
+      // i > j; the direction of a zero-length spring is kept in that orientation.
+      springs_[std::size_t(s)] = {a, b, k(e), system.rest_lengths()(e)};
+      flipped_.push_back(i > j);
+      // -Q_FP X_P: a free point joined to a pinned one (rows after the free ones, so b) is pulled
+      // by k x_pinned.
+      if (a < nr_ && b >= nr_) coupling_.push_back({a, b - nr_, k(e)});
+    }
+    std::partial_sum(spring_start_.begin(), spring_start_.end(), spring_start_.begin());
+    mass_h2_.resize(nr_);
+    for (int r = 0; r < nr_; ++r) mass_h2_(r) = mass(point_[std::size_t(r)]) * inv_dt2;
+
+    const Eigen::Index size = 3 * Eigen::Index(nx_), free_size = 3 * Eigen::Index(nr_);
+    for (Buffer& b : buffers_) b.setZero(size);
+    rhs0_.resize(free_size);
+    inertial_.resize(free_size);
+    force_.resize(free_size);
+    targets_.resize(3 * Eigen::Index(np));
+    penalty_targets_.resize(3 * Eigen::Index(penalty_rows_.size()));
+    direction_.resize(3 * Eigen::Index(m));
+    for (int s = 0; s < m; ++s) {
+      const int e = order_[std::size_t(s)];
       Vector3<Scalar> u =
           (system.positions().row(springs(e, 0)) - system.positions().row(springs(e, 1)))
               .transpose();
@@ -249,124 +376,529 @@ class FastMassSpring {
              system.rest_positions().row(springs(e, 1)))
                 .transpose();
       if (u.norm() > 0) u.normalize();
-      direction_.row(e) = u.transpose();
+      direction_.template segment<3>(3 * s) = flipped_[std::size_t(s)] ? Vector3<Scalar>(-u) : u;
     }
+    // Anderson's history: the differences of the last `window` residuals and maps, column-major.
+    const int window = options.acceleration == Acceleration::Anderson ? options.anderson_window : 0;
+    df_.setZero(free_size, window);
+    dg_.setZero(free_size, window);
   }
+
+  // ---- per step ---------------------------------------------------------------------------------
 
   Vector3<Scalar> force_on(const System& system, int i) const {
     return options.external_force + system.masses()(i) * options.gravity;
   }
 
-  // Inertial prediction, constant part of the right-hand side, starting iterate.
+  // Inertial prediction, constant part of the right-hand side, starting iterate (buffer 0),
+  // current rest lengths and pin targets.
   void prepare(const System& system) {
     const auto& x = system.positions();
     const auto& v = system.velocities();
-    const auto& mass = system.masses();
     const Scalar inv_dt2 = Scalar(1) / (dt_ * dt_);
-    inertial_ = x + dt_ * v;
-    for (int r = 0; r < n_red_; ++r) {
-      const int i = free_[std::size_t(r)];
-      rhs0_.row(r) = (mass(i) * inv_dt2) * inertial_.row(i) + force_on(system, i).transpose();
-    }
-    rhs0_.row(n_red_).setZero();
-    const auto& targets = system.pin_targets();
-    if (pins_ == PinMode::Penalty) {
-      for (int r = 0; r < system.num_pinned(); ++r)
-        rhs0_.row(system.pinned()[std::size_t(r)]) += weight_ * targets.row(r);
-    } else {
-      for (const Coupling& c : coupling_) rhs0_.row(c.row) += c.k * targets.row(c.pin);
-    }
-    x_ = options.initial_guess == InitialGuess::Current ? x : inertial_;
-    if (pins_ == PinMode::Exact)
-      for (int r = 0; r < system.num_pinned(); ++r)
-        x_.row(system.pinned()[std::size_t(r)]) = targets.row(r);
-  }
-
-  // One pass over the springs at the current iterate; returns their energy. With Scatter (the
-  // local step) it also sets rhs = rhs0 + A^T K D; without (after the last iteration) it records
-  // each spring's direction, which a spring of zero length keeps at the next step.
-  template <bool Scatter>
-  Scalar spring_pass(const System& system) {
-    if constexpr (Scatter) rhs_ = rhs0_;
-    const auto& springs = system.springs();
-    const auto& k = system.stiffness();
-    const auto& r = system.rest_lengths();
-    const Scalar* x = x_.data();
-    Scalar* b = rhs_.data();
-    Scalar energy = 0;
-    const int m = system.num_springs();
-    for (int e = 0; e < m; ++e) {
-      const Scalar* xi = x + 3 * springs(e, 0);
-      const Scalar* xj = x + 3 * springs(e, 1);
-      const Scalar d0 = xi[0] - xj[0], d1 = xi[1] - xj[1], d2 = xi[2] - xj[2];
-      const Scalar len = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-      const Scalar stretch = len - r(e);
-      energy += k(e) * stretch * stretch;
-      if constexpr (Scatter) {
-        Scalar s0, s1, s2;  // k_e r_e times the spring's unit direction
-        if (len > 0) {
-          const Scalar f = k(e) * r(e) / len;
-          s0 = f * d0, s1 = f * d1, s2 = f * d2;
-        } else {
-          const Scalar f = k(e) * r(e);
-          s0 = f * direction_(e, 0), s1 = f * direction_(e, 1), s2 = f * direction_(e, 2);
-        }
-        Scalar* bi = b + 3 * spring_rows_(e, 0);
-        Scalar* bj = b + 3 * spring_rows_(e, 1);
-        bi[0] += s0, bi[1] += s1, bi[2] += s2;
-        bj[0] -= s0, bj[1] -= s1, bj[2] -= s2;
-      } else if (len > 0) {
-        direction_(e, 0) = d0 / len, direction_(e, 1) = d1 / len, direction_(e, 2) = d2 / len;
+    const bool inertial_guess = options.initial_guess == InitialGuess::Inertial;
+    Scalar* x0 = buffers_[0].data();
+    for (int r = 0; r < nr_; ++r) {
+      const int i = point_[std::size_t(r)];
+      const Vector3<Scalar> f = force_on(system, i);
+      for (int c = 0; c < 3; ++c) {
+        const Scalar y = x(i, c) + dt_ * v(i, c);
+        inertial_(3 * r + c) = y;
+        force_(3 * r + c) = f(c);
+        rhs0_(3 * r + c) = system.masses()(i) * inv_dt2 * y + f(c);
+        x0[3 * r + c] = inertial_guess ? y : x(i, c);
       }
     }
+    const auto& targets = system.pin_targets();
+    if (pins_ == PinMode::Penalty) {
+      for (std::size_t p = 0; p < penalty_rows_.size(); ++p)
+        for (int c = 0; c < 3; ++c) {
+          penalty_targets_(3 * Eigen::Index(p) + c) = targets(Eigen::Index(p), c);
+          rhs0_(3 * penalty_rows_[p] + c) += weight_ * targets(Eigen::Index(p), c);
+        }
+    } else {
+      for (int p = 0; p < nx_ - nr_; ++p)
+        for (int c = 0; c < 3; ++c) targets_(3 * p + c) = targets(p, c);
+      for (const Coupling& cp : coupling_)
+        for (int c = 0; c < 3; ++c) rhs0_(3 * cp.row + c) += cp.k * targets(cp.pin, c);
+      for (Buffer& b : buffers_) restore_pins(b.data());
+    }
+    const auto& rest = system.rest_lengths();
+    for (std::size_t s = 0; s < springs_.size(); ++s) springs_[s].r = rest(order_[s]);
+  }
+
+  // Pinned rows (exact pins) back to their targets, after a solve or a scatter wrote into them.
+  void restore_pins(Scalar* x) const {
+    const Eigen::Index np = targets_.size();
+    if (np > 0) std::copy_n(targets_.data(), np, x + 3 * Eigen::Index(nr_));
+  }
+
+  // One pass over the springs at the iterate x. With Scatter (the local step) it adds
+  // A^T K D into w (rows of pinned points get garbage, see restore_pins); with Energy it returns
+  // the springs' energy; with neither (after the last iteration) it records each spring's
+  // direction, which a spring of zero length keeps at the next step.
+  //
+  // Springs are sorted by (a, b), a <= b: row a's share is summed in registers over the run of
+  // springs that share it and written once, so that no read-modify-write chain through memory
+  // links one spring to the next.
+  template <bool Scatter, bool Energy>
+  double spring_pass(const Scalar* x, Scalar* w) {
+    double energy = 0;
+    const int m = int(springs_.size());
+    int e = 0;
+    for (int a = 0; a < nx_ && e < m; ++a) e = spring_run<Scatter, Energy>(a, e, x, w, energy);
     return energy / 2;
   }
 
-  // X_free = Q^-1 rhs.
-  void global_step() {
-    if (n_red_ == n_) {
-      llt_.solve(rhs_.topRows(n_red_), x_);
-      return;
+  // The springs e, e + 1, ... whose lower row is a; returns the first spring past them. Adds
+  // k (|d| - r)^2 to energy (Energy), scatters k r d / |d| (Scatter) or records d / |d|.
+  template <bool Scatter, bool Energy>
+  int spring_run(int a, int e, const Scalar* x, Scalar* w, double& energy) {
+    const PackedSpring* sp = springs_.data();
+    const int m = int(springs_.size());
+    if (e >= m || sp[e].a != a) return e;
+    Scalar* dir = direction_.data();
+    const Scalar xa0 = x[3 * a], xa1 = x[3 * a + 1], xa2 = x[3 * a + 2];
+    Scalar acc0 = 0, acc1 = 0, acc2 = 0;  // k_e d_e summed into row a
+    for (; e < m && sp[e].a == a; ++e) {
+      const PackedSpring& s = sp[e];
+      const Scalar* xb = x + 3 * s.b;
+      const Scalar d0 = xa0 - xb[0], d1 = xa1 - xb[1], d2 = xa2 - xb[2];
+      const Scalar sq = d0 * d0 + d1 * d1 + d2 * d2;
+      const Scalar len = std::sqrt(sq);
+      const Scalar inv = sq > 0 ? Scalar(1) / len : Scalar(0);  // 1 / |d|
+      if constexpr (Energy) {
+        const Scalar stretch = len - s.r;
+        energy += double(s.k * stretch * stretch);
+      }
+      if constexpr (Scatter) {
+        Scalar s0, s1, s2;  // k_e r_e times the spring's unit direction
+        if (sq > 0) {
+          const Scalar f = s.k * s.r * inv;
+          s0 = f * d0, s1 = f * d1, s2 = f * d2;
+        } else {
+          const Scalar f = s.k * s.r;
+          s0 = f * dir[3 * e], s1 = f * dir[3 * e + 1], s2 = f * dir[3 * e + 2];
+        }
+        acc0 += s0, acc1 += s1, acc2 += s2;
+        Scalar* wb = w + 3 * s.b;
+        wb[0] -= s0, wb[1] -= s1, wb[2] -= s2;
+      } else if (sq > 0) {
+        dir[3 * e] = d0 * inv, dir[3 * e + 1] = d1 * inv, dir[3 * e + 2] = d2 * inv;
+      }
     }
-    llt_.solve(rhs_.topRows(n_red_), solution_);
-    for (int r = 0; r < n_red_; ++r) x_.row(free_[std::size_t(r)]) = solution_.row(r);
+    if constexpr (Scatter) w[3 * a] += acc0, w[3 * a + 1] += acc1, w[3 * a + 2] += acc2;
+    return e;
   }
 
-  // The iterate-dependent part of E other than the springs: inertia, external force, penalty.
-  Scalar quadratic_energy(const System& system) const {
-    const auto& mass = system.masses();
-    const Scalar half_inv_dt2 = Scalar(0.5) / (dt_ * dt_);
-    Scalar energy = 0;
-    for (int r = 0; r < n_red_; ++r) {
-      const int i = free_[std::size_t(r)];
-      energy += mass(i) * half_inv_dt2 * (x_.row(i) - inertial_.row(i)).squaredNorm() -
-                x_.row(i).dot(force_on(system, i).transpose());
+  // With Write, w = rhs0 on the free rows; with Energy, returns the iterate-dependent energy other
+  // than the springs' (inertia, external force, penalty) at x, in the same pass.
+  template <bool Energy, bool Write = true>
+  double start_rhs(const Scalar* x, Scalar* w) const {
+    const Scalar* b0 = rhs0_.data();
+    const Eigen::Index size = 3 * Eigen::Index(nr_);
+    if constexpr (!Energy) {
+      std::copy_n(b0, size, w);
+      return 0;
+    } else {
+      const Scalar* y = inertial_.data();
+      const Scalar* f = force_.data();
+      const Scalar* mh = mass_h2_.data();
+      double energy = 0;
+      for (int r = 0; r < nr_; ++r) {
+        const Scalar* xr = x + 3 * r;
+        const Scalar e0 = xr[0] - y[3 * r], e1 = xr[1] - y[3 * r + 1], e2 = xr[2] - y[3 * r + 2];
+        energy += double(mh[r] / 2 * (e0 * e0 + e1 * e1 + e2 * e2) -
+                         (xr[0] * f[3 * r] + xr[1] * f[3 * r + 1] + xr[2] * f[3 * r + 2]));
+        if constexpr (Write) {
+          w[3 * r] = b0[3 * r];
+          w[3 * r + 1] = b0[3 * r + 1];
+          w[3 * r + 2] = b0[3 * r + 2];
+        }
+      }
+      for (std::size_t p = 0; p < penalty_rows_.size(); ++p) {
+        const Scalar* xp = x + 3 * penalty_rows_[p];
+        const Scalar* tp = penalty_targets_.data() + 3 * p;
+        const Scalar e0 = xp[0] - tp[0], e1 = xp[1] - tp[1], e2 = xp[2] - tp[2];
+        energy += double(weight_ / 2 * (e0 * e0 + e1 * e1 + e2 * e2));
+      }
+      return energy;
     }
-    if (pins_ == PinMode::Penalty)
-      for (int p = 0; p < system.num_pinned(); ++p)
-        energy +=
-            weight_ / 2 *
-            (x_.row(system.pinned()[std::size_t(p)]) - system.pin_targets().row(p)).squaredNorm();
-    return energy;
   }
 
-  struct Coupling {
-    int row;  // reduced row of the free point
-    int pin;  // row of the pinned point in system.pin_targets()
-    Scalar k;
-  };
+  // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy.
+  template <bool Energy>
+  double local_step(const Scalar* x, Scalar* w) {
+    const double quadratic = start_rhs<Energy>(x, w);
+    return quadratic + spring_pass<true, Energy>(x, w);
+  }
+
+  // The global step in place: w = Q^-1 w on the free rows; pinned rows restored.
+  void global_step(Scalar* w) {
+    llt_.solve_in_place(w);
+    restore_pins(w);
+  }
+
+  template <class C, class = void>
+  struct has_lower : std::false_type {};
+  template <class C>
+  struct has_lower<C, std::void_t<decltype(std::declval<const C&>().lower())>> : std::true_type {};
+
+  // One whole iteration, w = G(x) = Q^-1 (rhs0 + A^T K D(x)), returning E(x) when Energy. With a
+  // sparse factor the local step is fused into the forward substitution: the springs whose lower
+  // row is j are done just before column j (row j is then complete; the rows below only receive
+  // additions, which commute with the substitution's), so that the spring arithmetic overlaps the
+  // substitution's memory traffic and row j is still in cache.
+  template <bool Energy>
+  double iteration(const Scalar* x, Scalar* w) {
+    if constexpr (kFuse && has_lower<Cholesky>::value) {
+      const double quadratic = start_rhs<Energy>(x, w);
+      const auto l = llt_.lower();
+      double spring = 0;
+      int e = 0;
+      for (int j = 0; j < nr_; ++j) {
+        e = spring_run<true, Energy>(j, e, x, w, spring);
+        l.forward_column(j, w);
+      }
+      for (int a = nr_; a < nx_; ++a) e = spring_run<true, Energy>(a, e, x, w, spring);
+      l.backward(w);
+      restore_pins(w);
+      return quadratic + spring / 2;
+    } else {
+      const double energy = local_step<Energy>(x, w);
+      global_step(w);
+      return energy;
+    }
+  }
+
+  // E at x without touching any right-hand side (and recording the springs' directions).
+  double energy_at(const Scalar* x) {
+    return start_rhs<true, false>(x, nullptr) + spring_pass<false, true>(x, nullptr);
+  }
+
+  // Relative-decrease bookkeeping shared by the loops; true when the tolerance stop fires.
+  bool tolerance_met(StepReport& report, int k, double e0, double e_prev, double e) const {
+    if (!(options.tolerance > 0) || k == 0) return false;
+    report.relative_decrease = relative(e_prev - e, e0 - e);
+    if (report.relative_decrease <= double(options.tolerance)) {
+      report.converged = true;
+      return true;
+    }
+    return false;
+  }
+
+  // ---- the iterations ---------------------------------------------------------------------------
+
+  // Plain local-global. Energy only where it is reported or the tolerance needs it.
+  Scalar* run_plain(StepReport& report) {
+    Scalar* x = buffers_[0].data();
+    Scalar* w = buffers_[1].data();
+    const int cap = options.iterations;
+    const bool track = options.tolerance > 0;
+    double e0 = 0, e_prev = 0;
+    for (int k = 0; k < cap; ++k) {
+      if (track || k == 0 || k == cap - 1) {
+        const double e = iteration<true>(x, w);
+        if (k == 0) e0 = e;
+        // The tolerance is judged at x: w (one more solve, already done) is dropped.
+        if (tolerance_met(report, k, e0, e_prev, e)) break;
+        e_prev = e;
+      } else {
+        iteration<false>(x, w);
+      }
+      std::swap(x, w);
+      ++report.iterations;
+    }
+    // e_prev: the energy at the start of the last iteration (always evaluated).
+    const double e = energy_at(x);
+    report.energy = e;
+    if (!report.converged) report.relative_decrease = relative(e_prev - e, e0 - e);
+    return x;
+  }
+
+  // Trial plain iterations from the prepared start; rho from the ratio of update norms over the
+  // second half. Uses buffers 0 and 1 (prepare() must run again afterwards).
+  void estimate_rho() {
+    const int iterations = options.chebyshev_estimate_iterations;
+    const int half = iterations / 2;
+    Scalar* x = buffers_[0].data();
+    Scalar* w = buffers_[1].data();
+    const Eigen::Index size = 3 * Eigen::Index(nr_);
+    double norm_half = 0, norm_last = 0;
+    for (int k = 0; k < iterations; ++k) {
+      local_step<false>(x, w);
+      global_step(w);
+      if (k == half - 1 || k == iterations - 1) {
+        const double d = (Eigen::Map<const Buffer>(w, size) - Eigen::Map<const Buffer>(x, size))
+                             .template cast<double>()
+                             .norm();
+        (k == half - 1 ? norm_half : norm_last) = d;
+      }
+      std::swap(x, w);
+    }
+    const double rho = std::pow(norm_last / norm_half, 1.0 / double(iterations - half));
+    rho_estimate_ = std::isfinite(rho) && rho > 0 && rho < 1 ? Scalar(rho) : Scalar(0);
+  }
+
+  // Chebyshev semi-iterative acceleration (Wang 2015) with an energy-monotone restart.
+  Scalar* run_chebyshev(StepReport& report) {
+    const double rho = double(chebyshev_rho());
+    const double gamma = double(options.chebyshev_gamma);
+    const int delay = options.chebyshev_delay;
+    const Eigen::Index size = 3 * Eigen::Index(nr_);
+    // x: x_k; p: x_{k-1}; h: G(x_{k-1}) (the plain iterate, E(h) <= E(x_{k-1})); w: free.
+    Scalar* x = buffers_[0].data();
+    Scalar* p = buffers_[1].data();
+    Scalar* h = buffers_[2].data();
+    Scalar* w = buffers_[3].data();
+    std::copy_n(x, 3 * Eigen::Index(nx_), p);
+    std::copy_n(x, 3 * Eigen::Index(nx_), h);
+    const int cap = options.iterations;
+    double e0 = 0, e_prev = 0, omega = 1;
+    int since = 0;  // iterations since the (re)start
+    for (int k = 0; k < cap; ++k) {
+      double e = local_step<true>(x, w);
+      if (k == 0) e0 = e;
+      if (k > 0 && !(e <= e_prev)) {
+        // The energy rose (or is not finite): back to the plain iterate, momentum dropped.
+        std::swap(x, h);
+        std::copy_n(x, size, p);
+        since = 0;
+        e = local_step<true>(x, w);
+        ++rejections_;
+      }
+      if (tolerance_met(report, k, e0, e_prev, e)) break;
+      e_prev = e;
+      global_step(w);  // w = G(x_k)
+      ++report.iterations;
+      ++since;
+      if (since < delay || !(rho > 0)) {
+        omega = 1;
+      } else if (since == delay) {
+        omega = 2 / (2 - rho * rho);
+      } else {
+        omega = 4 / (4 - rho * rho * omega);
+      }
+      if (omega == 1 && gamma == 1) {
+        // x_{k+1} = G(x_k): rotate, no arithmetic.
+        Scalar* old_p = p;  // never x_k or G(x_k): the one buffer free after the rotation
+        p = x;
+        x = w;
+        h = w;
+        w = old_p;
+      } else {
+        const auto om = Scalar(omega), ga = Scalar(gamma);
+        for (Eigen::Index i = 0; i < size; ++i)
+          p[i] = om * (ga * (w[i] - x[i]) + x[i] - p[i]) + p[i];
+        // Now p = x_{k+1}, x = x_k, w = G(x_k).
+        Scalar* old_h = h;
+        h = w;
+        std::swap(x, p);
+        w = old_h == x || old_h == p || old_h == h ? free_buffer(x, p, h) : old_h;
+      }
+    }
+    // The last iterate is accepted only when its energy is not above the last evaluated one;
+    // otherwise the plain iterate G(x_{k-1}) (never above it) is returned.
+    double e = energy_at(x);
+    if (report.iterations > 0 && !(e <= e_prev) && x != h) {
+      x = h;
+      e = energy_at(x);
+    }
+    report.energy = e;
+    if (!report.converged && report.iterations > 0)
+      report.relative_decrease = relative(e_prev - e, e0 - e);
+    return x;
+  }
+
+  // The one buffer of the four not among a, b, c (which may coincide).
+  Scalar* free_buffer(const Scalar* a, const Scalar* b, const Scalar* c) {
+    for (Buffer& buf : buffers_)
+      if (buf.data() != a && buf.data() != b && buf.data() != c) return buf.data();
+    return nullptr;
+  }
+
+  // Anderson acceleration (Peng et al. 2018, Algorithm 2): the energy at each iterate decides
+  // between the accelerated iterate and the plain step from the last accepted one.
+  Scalar* run_anderson(StepReport& report) {
+    const Eigen::Index size = 3 * Eigen::Index(nr_);
+    const int window = options.anderson_window;
+    if (window > df_.cols()) {  // Anderson chosen, or its window enlarged, after precompute()
+      df_.setZero(size, window);
+      dg_.setZero(size, window);
+    }
+    // x: x_k (pinned rows fixed, never swapped); w: right-hand side, then G(x_k); g: G of the last
+    // accepted iterate (the fallback); f: its residual G - x; fn: the new residual.
+    Scalar* x = buffers_[0].data();
+    Scalar* w = buffers_[1].data();
+    Scalar* g = buffers_[2].data();
+    Scalar* f = buffers_[3].data();
+    Scalar* fn = buffers_[4].data();
+    int count = 0, slot = 0;
+    bool have_previous = false;
+    const int cap = options.iterations;
+    double e0 = 0, e_prev = 0;
+    for (int k = 0; k < cap; ++k) {
+      double e = local_step<true>(x, w);
+      if (k == 0) e0 = e;
+      if (k > 0 && !(e < e_prev)) {
+        // Rejected: the plain step from the last accepted iterate, whose energy is <= e_prev.
+        std::copy_n(g, size, x);
+        count = 0;
+        slot = 0;
+        have_previous = false;
+        e = local_step<true>(x, w);
+        ++rejections_;
+      }
+      if (tolerance_met(report, k, e0, e_prev, e)) break;
+      e_prev = e;
+      global_step(w);  // w = G(x_k)
+      ++report.iterations;
+      // Residual, new history column and its inner products, in one pass.
+      const int s = slot;
+      Scalar* dfs = df_.col(s).data();
+      Scalar* dgs = dg_.col(s).data();
+      if (have_previous) {
+        double dfs_f = 0, dfs_dfs = 0;
+        for (Eigen::Index i = 0; i < size; ++i) {
+          const Scalar r = w[i] - x[i];
+          const Scalar d = r - f[i];
+          fn[i] = r;
+          dfs[i] = d;
+          dgs[i] = w[i] - g[i];
+          dfs_f += double(d * r);
+          dfs_dfs += double(d * d);
+        }
+        count = std::min(count + 1, window);
+        slot = (slot + 1) % window;
+        const Eigen::Map<const Buffer> dfs_map(dfs, size), fn_map(fn, size);
+        for (int j = 0; j < count; ++j) {
+          if (j == s) {
+            gram_(s, s) = dfs_dfs;
+            rhs_(s) = dfs_f;
+          } else {
+            gram_(s, j) = gram_(j, s) = double(df_.col(j).dot(dfs_map));
+            rhs_(j) = double(df_.col(j).dot(fn_map));
+          }
+        }
+      } else {
+        for (Eigen::Index i = 0; i < size; ++i) fn[i] = w[i] - x[i];
+      }
+      std::swap(f, fn);  // f = residual of x_k
+      std::swap(g, w);   // g = G(x_k), w free
+      have_previous = true;
+      // x_{k+1} = G(x_k) - dG theta, theta = argmin |f - dF theta|.
+      if (count > 0 && solve_normal_equations(count)) {
+        for (Eigen::Index i = 0; i < size; ++i) {
+          Scalar v = g[i];
+          for (int j = 0; j < count; ++j) v -= Scalar(theta_[std::size_t(j)]) * dg_(i, j);
+          x[i] = v;
+        }
+      } else {
+        count = 0;
+        slot = 0;
+        std::copy_n(g, size, x);
+      }
+    }
+    // Accept the last iterate only if it is not above the last accepted energy.
+    double e = energy_at(x);
+    if (report.iterations > 0 && !(e <= e_prev)) {
+      std::copy_n(g, size, x);
+      e = energy_at(x);
+    }
+    report.energy = e;
+    if (!report.converged && report.iterations > 0)
+      report.relative_decrease = relative(e_prev - e, e0 - e);
+    return x;
+  }
+
+  // theta = (dF^T dF + eps I)^-1 dF^T f by a small Cholesky; false when it fails.
+  bool solve_normal_equations(int count) {
+    std::array<double, kMaxWindow * kMaxWindow> a{};
+    double trace = 0;
+    for (int j = 0; j < count; ++j) trace += gram_(j, j);
+    const double eps = 1e-12 * trace / count + std::numeric_limits<double>::min();
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < count; ++j)
+        a[std::size_t(i * count + j)] = gram_(i, j) + (i == j ? eps : 0.0);
+    for (int j = 0; j < count; ++j) {
+      double d = a[std::size_t(j * count + j)];
+      for (int q = 0; q < j; ++q)
+        d -= a[std::size_t(j * count + q)] * a[std::size_t(j * count + q)];
+      if (!(d > 0)) return false;
+      const double l = std::sqrt(d);
+      a[std::size_t(j * count + j)] = l;
+      for (int i = j + 1; i < count; ++i) {
+        double v = a[std::size_t(i * count + j)];
+        for (int q = 0; q < j; ++q)
+          v -= a[std::size_t(i * count + q)] * a[std::size_t(j * count + q)];
+        a[std::size_t(i * count + j)] = v / l;
+      }
+    }
+    for (int i = 0; i < count; ++i) {
+      double v = rhs_(i);
+      for (int q = 0; q < i; ++q) v -= a[std::size_t(i * count + q)] * theta_[std::size_t(q)];
+      theta_[std::size_t(i)] = v / a[std::size_t(i * count + i)];
+    }
+    for (int i = count - 1; i >= 0; --i) {
+      double v = theta_[std::size_t(i)];
+      for (int q = i + 1; q < count; ++q)
+        v -= a[std::size_t(q * count + i)] * theta_[std::size_t(q)];
+      theta_[std::size_t(i)] = v / a[std::size_t(i * count + i)];
+    }
+    for (int i = 0; i < count; ++i)
+      if (!std::isfinite(theta_[std::size_t(i)])) return false;
+    return true;
+  }
+
+  // Writes the result into the system when it is finite (positions and the velocities they imply).
+  StepReport commit(System& system, const Scalar* x, StepReport& report) {
+    auto& positions = system.positions();
+    const Scalar inv_dt = Scalar(1) / dt_;
+    for (int r = 0; r < nx_; ++r) {
+      const int i = point_[std::size_t(r)];
+      for (int c = 0; c < 3; ++c) {
+        const Scalar value = x[3 * r + c];
+        if (!std::isfinite(value) || !std::isfinite((value - positions(i, c)) * inv_dt)) {
+          report.finite = false;
+          return report;
+        }
+      }
+    }
+    auto& velocities = system.velocities();
+    for (int r = 0; r < nx_; ++r) {
+      const int i = point_[std::size_t(r)];
+      for (int c = 0; c < 3; ++c) {
+        const Scalar value = x[3 * r + c];
+        velocities(i, c) = (value - positions(i, c)) * inv_dt;
+        positions(i, c) = value;
+      }
+    }
+    return report;
+  }
+
+  static constexpr int kMaxWindow = 16;
+  static constexpr bool kFuse = false;
 
   Scalar dt_ = 0;
   Scalar weight_ = 0;
+  Scalar rho_estimate_ = 0;
   PinMode pins_ = PinMode::Exact;
   std::uint64_t revision_ = 0;
-  int n_ = 0, n_red_ = 0;
-  std::vector<int> free_;
+  int n_ = 0, nr_ = 0, nx_ = 0;
+  std::size_t rejections_ = 0;
+  std::vector<int> free_, row_, point_, order_, penalty_rows_, spring_start_;
+  std::vector<bool> flipped_;
+  std::vector<PackedSpring> springs_;
   std::vector<Coupling> coupling_;
-  Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor> spring_rows_;
   Matrix q_;
   Cholesky llt_;
-  PointsType x_, inertial_, rhs0_, rhs_, solution_, direction_;
+  std::array<Buffer, 5> buffers_;
+  Buffer rhs0_, inertial_, force_, mass_h2_, targets_, penalty_targets_, direction_;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> df_, dg_;
+  Eigen::Matrix<double, kMaxWindow, kMaxWindow> gram_ =
+      Eigen::Matrix<double, kMaxWindow, kMaxWindow>::Zero();
+  Eigen::Matrix<double, kMaxWindow, 1> rhs_ = Eigen::Matrix<double, kMaxWindow, 1>::Zero();
+  std::array<double, kMaxWindow> theta_{};
 };
 
 }  // namespace massspring

@@ -6,6 +6,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <vector>
 
 #include "massspring/storage/tags.hpp"
@@ -27,6 +28,7 @@ class DenseCholesky {
   bool compute(const Matrix& q) {
     llt_.compute(q);
     work_.resize(q.rows(), 3);
+    perm_ = Eigen::VectorXi::LinSpaced(q.rows(), 0, int(q.rows()) - 1);
     ok_ = llt_.info() == Eigen::Success;
     return ok_;
   }
@@ -37,6 +39,19 @@ class DenseCholesky {
   [[nodiscard]] Eigen::Index rows() const { return work_.rows(); }
   /// @brief Stored entries of the factor L (the lower triangle, diagonal included).
   [[nodiscard]] Eigen::Index factor_nonzeros() const { return rows() * (rows() + 1) / 2; }
+
+  /// @brief The identity: a dense factor is not reordered (the interface of SparseCholesky).
+  [[nodiscard]] const Eigen::VectorXi& permutation() const { return perm_; }
+  /// @brief Bytes the factor takes (the whole n x n matrix).
+  [[nodiscard]] std::size_t factor_bytes() const {
+    return std::size_t(rows()) * std::size_t(rows()) * sizeof(Scalar);
+  }
+
+  /// @brief w = Q^-1 w for a #rows by 3 row-major array (w[3 r + c]). No allocation.
+  void solve_in_place(Scalar* w) {
+    Eigen::Map<Points<Scalar>> rows3(w, rows(), 3);
+    solve(rows3, rows3);
+  }
 
   /// @brief x = Q^-1 b for a #rows by 3 right-hand side. No allocation; b and x may be the same.
   /// One forward and one back substitution per column.
@@ -53,6 +68,7 @@ class DenseCholesky {
  private:
   Eigen::LLT<Matrix, Eigen::Lower> llt_;
   Eigen::Matrix<Scalar, Eigen::Dynamic, 3> work_;  // column-major: each column is contiguous
+  Eigen::VectorXi perm_;
   bool ok_ = false;
 };
 
