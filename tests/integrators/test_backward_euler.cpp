@@ -14,6 +14,7 @@
 #include <massspring/scene/make_system.hpp>
 #include <random>
 
+#include "support/alloc_counter.hpp"
 #include "support/oscillator.hpp"
 
 namespace {
@@ -220,4 +221,20 @@ TEST_CASE("BackwardEuler: refuses bad input; failure leaves the state") {
   CHECK_FALSE(r.ok());
   CHECK(s.positions() == x0);
   CHECK(s.velocities() == v);
+}
+
+TEST_CASE("BackwardEuler with Dense storage allocates nothing in step()") {
+  // Sparse storage allocates inside Eigen's numeric factorisation (a permuted copy of A per
+  // solve); Dense assembles and factorises into storage sized by precompute().
+  for (auto mode : {BackwardEulerMode::Linearized, BackwardEulerMode::Newton}) {
+    auto s = hanging_cloth<SystemD>();
+    s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
+    BackwardEuler<SystemD> be;
+    be.options.mode = mode;
+    be.precompute(s, 0.01);
+    REQUIRE(be.step(s).ok());
+    massspring::test::CountAllocations count;
+    for (int i = 0; i < 5; ++i) REQUIRE(be.step(s).ok());
+    CHECK(count.count() == 0);
+  }
 }

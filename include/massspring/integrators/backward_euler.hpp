@@ -196,9 +196,10 @@ class BackwardEuler {
   Scalar objective(const System& system, const PointsType& x) const {
     const Scalar h = dt_;
     const PointsType& x0 = system.positions();
-    const Scalar inertia =
-        ((x - x0 - h * system.velocities()).rowwise().squaredNorm().transpose() * system.masses())
-            .value();
+    Scalar inertia = 0;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      inertia += system.masses()(i) *
+                 (x.row(i) - x0.row(i) - h * system.velocities().row(i)).squaredNorm();
     return inertia / (2 * h * h) + potential_energy(system, x) +
            drag_ / (2 * h) * (x - x0).squaredNorm();
   }
