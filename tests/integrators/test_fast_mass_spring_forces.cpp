@@ -1,0 +1,139 @@
+// integrators/fast_mass_spring.hpp with the system's force terms: constant forces exactly as the
+// options give them, linear drag folded into Q exactly (the converged step equals Newton backward
+// Euler's), other terms at the step's start (a closed form for one free point).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <massspring/forces/gravity.hpp>
+#include <massspring/forces/linear_drag.hpp>
+#include <massspring/integrators/backward_euler.hpp>
+#include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/scene/cloth.hpp>
+#include <massspring/scene/make_system.hpp>
+#include <random>
+
+namespace {
+
+using massspring::FastMassSpring;
+using System = massspring::MassSpringSystem<double, massspring::Sparse>;
+using Points = massspring::Points<double>;
+
+System cloth(unsigned seed = 2) {
+  massspring::ClothOptions o;
+  o.columns = 6;
+  o.rows = 5;
+  o.width = 0.5;
+  o.height = 0.4;
+  o.stiffness = 80;
+  System s = massspring::make_system<System>(massspring::make_cloth(o));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  Points x = s.positions();
+  for (int i = 0; i < x.rows(); ++i)
+    if (!s.is_pinned(i)) x.row(i) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
+  s.set_positions(x);
+  return s;
+}
+
+// A user's term: a linear tether to the origin, F = -c x (not constant: it depends on x).
+struct Tether {
+  double c = 3;
+  void add_force(const massspring::ForceContext<double>& ctx, Points& f) const { f -= c * ctx.x; }
+};
+
+}  // namespace
+
+TEST_CASE("FastMassSpring: Gravity and ConstantForce terms act exactly as the options do") {
+  for (auto pins : {massspring::PinMode::Exact, massspring::PinMode::Penalty}) {
+    System a = cloth(), b = cloth();
+    FastMassSpring<System> with_options, with_terms;
+    with_options.options.pins = with_terms.options.pins = pins;
+    with_options.options.gravity = Eigen::Vector3d(0, -9.8, 0);
+    with_options.options.external_force = Eigen::Vector3d(0.1, 0, -0.2);
+    b.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
+    b.add_force(massspring::ConstantForce<double>(Eigen::Vector3d(0.1, 0, -0.2)));
+    with_options.precompute(a, 1.0 / 30);
+    with_terms.precompute(b, 1.0 / 30);
+    for (int i = 0; i < 10; ++i) {
+      REQUIRE(with_options.step(a).ok());
+      REQUIRE(with_terms.step(b).ok());
+    }
+    // The same numbers summed in a different order: equal to rounding.
+    CHECK((a.positions() - b.positions()).cwiseAbs().maxCoeff() < 1e-13);
+  }
+}
+
+TEST_CASE("FastMassSpring: linear drag is folded into Q exactly (converged = Newton's step)") {
+  System a = cloth(), b = cloth();
+  for (System* s : {&a, &b}) {
+    s->add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
+    s->add_force(massspring::LinearDrag<double>(0.02));
+  }
+  FastMassSpring<System> lg;
+  lg.options.iterations = 20000;
+  lg.options.tolerance = 0;
+  const double h = 1.0 / 30;
+  lg.precompute(a, h);
+  massspring::BackwardEuler<System> be;
+  be.options.tolerance = 1e-13;
+  be.precompute(b, h);
+  double previous = INFINITY;
+  for (int step = 0; step < 3; ++step) {
+    const auto r = lg.step(a);
+    REQUIRE(r.ok());
+    REQUIRE(be.step(b).converged);
+    // Both minimise the incremental potential with beta/(2h)|x - x^t|^2; to rounding.
+    CHECK((a.positions() - b.positions()).cwiseAbs().maxCoeff() < 1e-12);
+    previous = r.energy;
+  }
+  CHECK(std::isfinite(previous));
+}
+
+TEST_CASE("FastMassSpring: with drag the energy still never increases over iterations") {
+  System s = cloth(5);
+  s.add_force(massspring::LinearDrag<double>(0.5));
+  s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
+  FastMassSpring<System> lg;
+  lg.options.tolerance = 0;
+  lg.precompute(s, 1.0 / 30);
+  double last = INFINITY;
+  for (int iterations = 1; iterations <= 30; ++iterations) {
+    System t = s;
+    lg.options.iterations = iterations;
+    const auto r = lg.step(t);
+    REQUIRE(r.ok());
+    // E after k + 1 iterations <= E after k (relative slack for rounding of ~|E| eps).
+    CHECK(r.energy <= last + 1e-12 * std::abs(last));
+    last = r.energy;
+  }
+}
+
+TEST_CASE("FastMassSpring: other terms act at the step's start (closed form, one free point)") {
+  // One point, no springs: the step minimises m/(2h^2)|x - y|^2 - x . F(x^t) with y = x + h v, so
+  // x' = x + h v + h^2/m F(x^t), v' = (x' - x)/h: symplectic Euler's position update.
+  Points x(1, 3);
+  x << 0.3, -0.2, 0.5;
+  System s(x, massspring::Edges(0, 2), 2.0, 0.0);
+  Points v(1, 3);
+  v << 0.1, 0.4, -0.3;
+  s.set_velocities(v);
+  s.add_force(Tether{});
+  FastMassSpring<System> lg;
+  lg.options.iterations = 3;
+  const double h = 0.05;
+  lg.precompute(s, h);
+  REQUIRE(lg.step(s).ok());
+  const Points expect = x + h * v + h * h / 2.0 * (-3 * x);
+  CHECK((s.positions() - expect).cwiseAbs().maxCoeff() < 1e-15);
+  CHECK((s.velocities() - (expect - x) / h).cwiseAbs().maxCoeff() < 1e-13);
+}
+
+TEST_CASE("FastMassSpring: adding a drag term makes the next step factorise again") {
+  System s = cloth();
+  FastMassSpring<System> lg;
+  lg.precompute(s, 1.0 / 30);
+  CHECK_FALSE(lg.step(s).refactorized);
+  s.add_force(massspring::LinearDrag<double>(0.1));
+  CHECK(lg.step(s).refactorized);
+  CHECK_FALSE(lg.step(s).refactorized);
+}
