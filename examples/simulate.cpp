@@ -5,7 +5,7 @@
 //   massspring-simulate --generate cloth:60x50 --gravity 0,-9.8,0
 //   massspring-simulate flag.json --gravity 0,0,0 --force 0,-9.8,0 --pins penalty
 //       (the assignment's conventions, for its own scenes)
-//   massspring-simulate examples/scenes/orbit.xml --integrator forward-euler --every 10 --out f
+//   massspring-simulate examples/scenes_xml/orbit.xml --integrator forward-euler --every 10 --out f
 //       (an XML scene runs with the integrator it names, its dt, for its duration, unless the
 //        options say otherwise)
 //

@@ -1,11 +1,16 @@
 #!/usr/bin/python3
 """Renders OBJ frames written by massspring-simulate into pictures.
 
-    python3 scripts/render.py FRAMES_DIR [--png strip.png] [--gif anim.gif] [--panels 4]
+    python3 scripts/render.py FRAMES_DIR [FRAMES_DIR ...] [--png strip.png] [--gif anim.gif]
+        [--panels 4] [--labels a,b] [--trails] [--lengths lengths.png --frame-time S]
 
 FRAMES_DIR holds frame_NNNNN.obj files (vertices, polygons and 2-vertex edges, 1-based). The PNG
 is a strip of --panels frames spread evenly over the run; the GIF shows every frame. The y axis
-of the simulation is drawn upwards. Needs python3-matplotlib (Debian).
+of the simulation is drawn upwards. Scenes whose z is 0 throughout (FOSSSim's 2D scenes) are drawn
+in 2D; several FRAMES_DIRs (2D only) are overlaid in one picture, one colour each (--labels names
+them), and --trails draws the path of every moving point so far. --lengths plots every edge's
+length against time (frame number times --frame-time seconds) for the first FRAMES_DIR.
+Needs python3-matplotlib (Debian).
 """
 
 import argparse
@@ -17,7 +22,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import animation  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
+
+COLOURS = ["#1c4587", "#cc4125", "#38761d", "#b45f06", "#674ea7"]
 
 
 def read_obj(path):
@@ -82,28 +90,142 @@ def bounds(frames):
     return limits
 
 
+def is_flat(runs):
+    """True when every vertex of every frame has z == 0."""
+    return all(v[2] == 0 for frames in runs for vertices, _, _ in frames for v in vertices)
+
+
+def bounds_2d(runs):
+    xs = [v[0] for frames in runs for vertices, _, _ in frames for v in vertices]
+    ys = [v[1] for frames in runs for vertices, _, _ in frames for v in vertices]
+    pad = 0.06 * max(max(xs) - min(xs), max(ys) - min(ys), 1e-3)
+    return (min(xs) - pad, max(xs) + pad), (min(ys) - pad, max(ys) + pad)
+
+
+def draw_2d(ax, runs, index, limits, title, labels, trails):
+    """Frame `index` of every run, overlaid; trails of the moving points up to it."""
+    ax.cla()
+    for r, frames in enumerate(runs):
+        colour = COLOURS[r % len(COLOURS)]
+        k = min(index, len(frames) - 1)
+        vertices, _, edges = frames[k]
+        if trails and k > 0:
+            for p in range(len(vertices)):
+                path = [frames[f][0][p] for f in range(k + 1)]
+                if path[0] != path[-1] or any(q != path[0] for q in path):
+                    ax.plot([q[0] for q in path], [q[1] for q in path], color=colour,
+                            linewidth=0.7, alpha=0.5)
+        if edges:
+            ax.add_collection(LineCollection(
+                [((vertices[i][0], vertices[i][1]), (vertices[j][0], vertices[j][1]))
+                 for i, j in edges], colors=colour, linewidths=1.0))
+        ax.scatter([v[0] for v in vertices], [v[1] for v in vertices], s=9, color=colour,
+                   zorder=3, label=labels[r] if labels and r < len(labels) else None)
+    ax.set_xlim(*limits[0])
+    ax.set_ylim(*limits[1])
+    ax.set_aspect("equal")
+    ax.tick_params(labelsize=7)
+    ax.set_title(title, fontsize=9)
+    if labels:
+        ax.legend(fontsize=7, loc="upper right")
+
+
+def plot_lengths(path, frames, frame_time):
+    """Every edge's length against time, one line per edge."""
+    vertices, _, edges = frames[0]
+    if not edges:
+        sys.exit("render.py: --lengths needs frames with edges")
+    times = [k * frame_time for k in range(len(frames))]
+    fig, ax = plt.subplots(figsize=(6, 3.2))
+    cmap = plt.get_cmap("viridis")
+    for e, (i, j) in enumerate(edges):
+        lengths = []
+        for vertices, _, _ in frames:
+            a, b = vertices[i], vertices[j]
+            lengths.append(sum((a[c] - b[c]) ** 2 for c in range(3)) ** 0.5)
+        ax.plot(times, lengths, color=cmap(e / max(len(edges) - 1, 1)), linewidth=1,
+                label=f"edge {e}")
+    ax.set_xlabel("t [s]" if frame_time != 1 else "frame")
+    ax.set_ylabel("length [m]")
+    if len(edges) <= 12:
+        ax.legend(fontsize=6, ncol=2, loc="upper right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    print(f"render.py: wrote {path}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("frames", type=pathlib.Path, help="folder of frame_*.obj files")
+    parser.add_argument("frames", type=pathlib.Path, nargs="+",
+                        help="folder(s) of frame_*.obj files")
     parser.add_argument("--png", type=pathlib.Path, help="write a strip of frames here")
     parser.add_argument("--gif", type=pathlib.Path, help="write an animation here")
     parser.add_argument("--panels", type=int, default=4, help="frames in the PNG strip (4)")
     parser.add_argument("--fps", type=int, default=10, help="GIF frames per second (10)")
+    parser.add_argument("--labels", help="comma-separated names of the runs (2D overlays)")
+    parser.add_argument("--trails", action="store_true", help="2D: draw the paths so far")
+    parser.add_argument("--lengths", type=pathlib.Path,
+                        help="plot edge lengths against time here (first run)")
+    parser.add_argument("--frame-time", type=float, default=1.0,
+                        help="seconds between frames, for --lengths and 2D titles (default 1: "
+                             "frame numbers)")
+    parser.add_argument("--size", type=float, default=3.2, help="panel size in inches (3.2)")
     args = parser.parse_args()
 
-    files = sorted(args.frames.glob("frame_*.obj"))
-    if not files:
-        sys.exit(f"render.py: no frame_*.obj files in {args.frames}")
-    frames = [read_obj(f) for f in files]
-    limits = bounds(frames)
+    runs, names = [], []
+    for folder in args.frames:
+        files = sorted(folder.glob("frame_*.obj"))
+        if not files:
+            sys.exit(f"render.py: no frame_*.obj files in {folder}")
+        runs.append([read_obj(f) for f in files])
+        names.append([f.stem for f in files])
+    labels = args.labels.split(",") if args.labels else None
+    flat = is_flat(runs)
+    if len(runs) > 1 and not flat:
+        sys.exit("render.py: several frame folders are overlaid in 2D scenes only")
+    frames, files = runs[0], names[0]
+    count_all = max(len(r) for r in runs)
 
+    def title(k):
+        if args.frame_time != 1:
+            return f"t = {k * args.frame_time:.2f} s"
+        return files[min(k, len(files) - 1)]
+
+    if args.lengths:
+        plot_lengths(args.lengths, frames, args.frame_time)
+    if flat:
+        limits = bounds_2d(runs)
+        if args.png:
+            count = max(1, min(args.panels, count_all))
+            picks = [round(k * (count_all - 1) / max(count - 1, 1)) for k in range(count)]
+            fig, axes = plt.subplots(1, count, figsize=(args.size * count, args.size),
+                                     squeeze=False)
+            for panel, index in enumerate(picks):
+                draw_2d(axes[0][panel], runs, index, limits, title(index),
+                        labels if panel == 0 else None, args.trails)
+            fig.tight_layout()
+            fig.savefig(args.png, dpi=90)
+            plt.close(fig)
+            print(f"render.py: wrote {args.png}")
+        if args.gif:
+            fig, ax = plt.subplots(figsize=(args.size * 1.25, args.size * 1.25))
+            movie = animation.FuncAnimation(
+                fig, lambda k: draw_2d(ax, runs, k, limits, title(k), labels, args.trails),
+                frames=count_all)
+            movie.save(args.gif, writer=animation.PillowWriter(fps=args.fps))
+            plt.close(fig)
+            print(f"render.py: wrote {args.gif}")
+        return
+
+    limits = bounds(frames)
     if args.png:
         count = max(1, min(args.panels, len(frames)))
         picks = [round(k * (len(frames) - 1) / max(count - 1, 1)) for k in range(count)]
-        fig = plt.figure(figsize=(3.2 * count, 3.4))
+        fig = plt.figure(figsize=(args.size * count, args.size * 1.06))
         for panel, index in enumerate(picks):
             ax = fig.add_subplot(1, count, panel + 1, projection="3d")
-            draw(ax, frames[index], limits, files[index].stem)
+            draw(ax, frames[index], limits, files[index])
         fig.tight_layout()
         fig.savefig(args.png, dpi=110)
         plt.close(fig)
@@ -112,7 +234,7 @@ def main():
         fig = plt.figure(figsize=(4.5, 4))
         ax = fig.add_subplot(projection="3d")
         movie = animation.FuncAnimation(
-            fig, lambda k: draw(ax, frames[k], limits, files[k].stem), frames=len(frames))
+            fig, lambda k: draw(ax, frames[k], limits, files[k]), frames=len(frames))
         movie.save(args.gif, writer=animation.PillowWriter(fps=args.fps))
         plt.close(fig)
         print(f"render.py: wrote {args.gif}")

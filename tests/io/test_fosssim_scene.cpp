@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "../../examples/fosssim_scenes.hpp"
 #include "io/test_files.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "support/paths.hpp"
@@ -501,5 +502,22 @@ TEST_CASE("fosssim: refusals name the file, the line and the item") {
     const auto s = massspring::io::load_scene<DenseSystem>(ok);
     CHECK(s.num_springs() == 1);
     CHECK(s.springs().row(0) == Eigen::RowVector2i(1, 0));
+  }
+}
+
+TEST_CASE(
+    "fosssim: the committed examples/scenes_xml/*.xml are exactly what massspring-make-scenes "
+    "writes") {
+  TempDir dir;
+  for (const auto& [stem, scene] : massspring::examples::project_fosssim_scenes()) {
+    CAPTURE(stem);
+    write_fosssim_scene(dir / (stem + ".xml"), scene);
+    const fs::path committed =
+        massspring::test::source_dir() / "examples" / "scenes_xml" / (stem + ".xml");
+    CHECK(massspring::test::read_bytes(committed) ==
+          massspring::test::read_bytes(dir / (stem + ".xml")));
+    // and each loads into a system with one spring per springforce
+    const auto system = massspring::io::load_scene<SparseSystem>(committed);
+    CHECK(system.num_springs() == int(scene.springs.size()));
   }
 }

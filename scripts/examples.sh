@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Runs every example scene with massspring-simulate and renders it into docs/images/ex_*.png and
+# ex_*.gif (docs/examples.md shows them). Frames go to out/examples/ (not committed).
+#   scripts/examples.sh            # build what is needed, run, render
+# Needs python3-matplotlib (Debian's /usr/bin/python3); scripts/setup.sh installs it.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+scripts/setup.sh
+
+build=${BUILD_DIR:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" \
+  --target massspring_simulate massspring_make_scenes
+python=/usr/bin/python3
+[ -x "$python" ] || python=python3
+simulate="$build/examples/massspring-simulate"
+render() { "$python" scripts/render.py "$@"; }
+out=out/examples
+images=docs/images
+rm -rf "$out"
+mkdir -p "$out" "$images"
+
+# The scenes are generated; regenerate them so the pictures show what the generator writes.
+"$build/examples/massspring-make-scenes" examples/scenes examples/scenes_xml >/dev/null
+
+# Orbit: the same scene with explicit and with symplectic Euler (dt = 0.01, 20 s, 5 orbits).
+"$simulate" examples/scenes_xml/orbit.xml --integrator forward-euler --every 5 --out "$out/orbit_forward"
+"$simulate" examples/scenes_xml/orbit.xml --integrator symplectic-euler --every 5 --out "$out/orbit_symplectic"
+render "$out/orbit_forward" "$out/orbit_symplectic" --labels "forward Euler,symplectic Euler" \
+  --trails --frame-time 0.05 --panels 3 --png "$images/ex_orbit.png"
+rm -rf "$out/orbit_forward" "$out/orbit_symplectic"  # coarser frames for a small GIF
+"$simulate" examples/scenes_xml/orbit.xml --integrator forward-euler --every 25 --out "$out/orbit_forward"
+"$simulate" examples/scenes_xml/orbit.xml --integrator symplectic-euler --every 25 --out "$out/orbit_symplectic"
+render "$out/orbit_forward" "$out/orbit_symplectic" --labels "forward Euler,symplectic Euler" \
+  --trails --frame-time 0.25 --gif "$images/ex_orbit.gif" --fps 10 --size 2.8
+
+# Cantilever: a clamped truss sagging under gravity (symplectic Euler, dt = 0.5 ms, 6 s).
+"$simulate" examples/scenes_xml/cantilever.xml --every 300 --out "$out/cantilever"
+render "$out/cantilever" --frame-time 0.15 --panels 4 --png "$images/ex_cantilever.png" \
+  --gif "$images/ex_cantilever.gif" --size 3
+
+# Decreasing rest length: the hanging chain's rest lengths shrink as exp(-0.1 t).
+"$simulate" examples/scenes_xml/shrinking_chain.xml --shrink 0.1 --every 20 --out "$out/shrinking"
+render "$out/shrinking" --frame-time 0.2 --panels 4 --png "$images/ex_shrinking_chain.png" \
+  --gif "$images/ex_shrinking_chain.gif" --size 3
+
+# Damping series: b = 0, 0.1, ..., 1 (top to bottom).
+"$simulate" examples/scenes_xml/damping_series.xml --every 10 --out "$out/damping"
+render "$out/damping" --frame-time 0.05 --panels 4 --png "$images/ex_damping_series.png" \
+  --lengths "$images/ex_damping_lengths.png" --size 3
+
+# The assignment-like 3D scenes with the local-global solver, gravity 9.8 m/s^2, dt = 1/30.
+for scene in chain net; do
+  "$simulate" "examples/scenes/$scene.json" --frames 90 --every 3 --out "$out/$scene"
+  render "$out/$scene" --panels 4 --png "$images/ex_$scene.png"
+done
+"$simulate" examples/scenes/flag.json --frames 90 --every 10 --iterations 20 --out "$out/flag"
+render "$out/flag" --panels 4 --png "$images/ex_flag.png" --gif "$images/ex_flag.gif"
+
+ls -l "$images"/ex_*
