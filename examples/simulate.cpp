@@ -144,7 +144,6 @@ struct Setup {
   std::string integrator;  // forward-euler, symplectic-euler, backward-euler, ...
   std::string name;
   bool from_xml = false;
-  massspring::Vector3<double> xml_gravity = massspring::Vector3<double>::Zero();
 };
 
 const char* const kIntegrators[] = {"forward-euler", "symplectic-euler", "backward-euler",
@@ -251,15 +250,11 @@ int run(const Config& c, Setup<System>& s) {
     force(k) = Scalar(c.force[std::size_t(k)]);
   }
   if (s.integrator == "fast-mass-spring") {
-    // FastMassSpring takes gravity and a constant force from its options, not from the system's
-    // force terms: an XML scene's gravity moves there; attraction and drag it cannot take.
+    // FastMassSpring applies the system's force terms (an XML scene's gravity, attraction and
+    // drag) and adds its options' gravity and constant force (the JSON scenes' --gravity/--force).
     if (s.from_xml) {
-      for (const auto& term : system.forces())
-        if (std::string(term->name) != "gravity")
-          throw Error(s.name + ": fast-mass-spring does not take the scene's " + term->name +
-                      " (choose another --integrator)");
-      system.clear_forces();
-      gravity = s.xml_gravity.template cast<Scalar>();
+      gravity.setZero();
+      force.setZero();
     }
     massspring::FastMassSpring<System> solver;
     solver.options.iterations = c.iterations;
@@ -307,7 +302,6 @@ int run_scene(const Config& c) {
     s.system = massspring::io::make_fosssim_system<System>(scene);
     s.edges = scene.edges;
     s.from_xml = true;
-    if (scene.gravity) s.xml_gravity = *scene.gravity;
     s.dt = c.dt_given ? c.dt : scene.dt;
     const long long steps = c.frames_given ? c.frames : scene.steps_for(s.dt);
     if (steps > 100000000) throw Error(c.scene + ": more than 10^8 steps; give --frames or --dt");
