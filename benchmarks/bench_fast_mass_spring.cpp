@@ -1,21 +1,27 @@
 // integrators/fast_mass_spring.hpp: precompute and step of FastMassSpring, Dense and Sparse,
-// double, against the seed's plain formulas (tests/support/seed_reference.hpp) and against the
-// floor of an iteration (one forward and one back substitution with the factor of Q, n x 3
-// right-hand side).
+// double and float, plain and accelerated, against the seed's plain formulas
+// (tests/support/seed_reference.hpp) and against the floor of an iteration (one forward and one
+// back substitution with the factor of Q, n x 3 right-hand side, in the factor's row order).
 //
 // Setup throughout is the assignment's: dt = 1/30 s, a force (0, -9.8, 0) on every point, penalty
-// pins w = 1e10, 50 local-global iterations per step starting from the current positions.
+// pins w = 1e10, 50 local-global iterations per step starting from the current positions. The
+// curtain (Liu 2013's: 81 x 81, one diagonal per cell, skip-one bending springs, two corners
+// pinned) falls under gravity m g instead, as in Liu's paper: the assignment's 9.8 N on each of its
+// 1.5e-4 kg points would pull it ~70 m in one frame.
 //
-// Scenes: generated cloth grids N x N (N = 16, 32, 64, 128; quads with both diagonals, top corners
-// pinned, stiffness 1000 N/m, Voronoi masses) and, when ../shared/scenes/jacobson is there, the
-// assignment's flag and skirt.
+// Scenes: generated cloth grids N x N (N = 32, 64, 128; quads with both diagonals, top corners
+// pinned, stiffness 1000 N/m, Voronoi masses), the curtain and, when ../shared/scenes/jacobson is
+// there, the assignment's flag and skirt.
 //
-// Names: <what>/<solver>/<scene>, what = Precompute | Step | Floor, solver = Sparse | Dense (ours),
+// Names: <what>/<solver>/<scene>, what = Precompute | Step | Floor, solver = Sparse | Dense (ours,
+// double, penalty pins as the seed), SparseExact / SparseFloat (ours, exact pins, double / float),
+// Chebyshev / Anderson (ours, accelerated, as many iterations as reach the error of 50 plain ones),
 // Seed (SeedFastMassSpring), EigenSolve (Eigen's SimplicialLLT::solve on the seed's factor).
 // Counters: points, springs, nnz_L (stored entries of the factor of Q) and iterations (local-global
-// iterations per step: for Step/Sparse and Step/Dense the mean step() reported, elsewhere the
-// configured 50). After the run a summary table compares ours with the seed per scene (medians of
-// the repetitions), with each iteration's time as a multiple of the floor.
+// iterations per step: for ours the mean step() reported, elsewhere the configured 50). After the
+// run, summary tables compare ours with the seed per scene (medians of the repetitions), with each
+// iteration's time as a multiple of the floor; the accelerated solvers' time to the error of 50
+// plain iterations; float against double.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -49,48 +55,62 @@ namespace {
 
 using SparseSystem = massspring::MassSpringSystem<double, massspring::Sparse>;
 using DenseSystem = massspring::MassSpringSystem<double, massspring::Dense>;
+using FloatSystem = massspring::MassSpringSystem<float, massspring::Sparse>;
 using massspring::test::SeedFastMassSpring;
 
 constexpr double kDt = 1.0 / 30;
 constexpr int kIterations = 50;
 constexpr double kPenaltyWeight = 1e10;
+constexpr int kWarmFrames = 10;  // plain steps before the step whose error is measured
 
 // Generated grids. Dense stops at 32 x 32 (1024 points): its Q is n x n dense, so memory grows as
-// n^2, factorisation as n^3 / 3 and each iteration's solve as n^2. Measured here: 48 x 48 (2304
-// points, a 42 MB matrix) takes ~0.3 s to factorise and ~0.2 s per step; 64 x 64 (4096 points,
-// 128 MB) would take ~1.7 s and ~0.7 s, and 128 x 128 a 2 GB matrix: too long for a routine run
-// and far past where anyone should use Dense. flag (3200 points) and skirt (9840) are Sparse only,
-// likewise.
-constexpr int kGridSizes[] = {16, 32, 64, 128};
+// n^2, factorisation as n^3 / 3 and each iteration's solve as n^2. flag (3200 points), curtain
+// (6561) and skirt (9840) are Sparse only, likewise.
+constexpr int kGridSizes[] = {32, 64, 128};
 constexpr int kDenseLimit = 32;
 
-massspring::FastMassSpringOptions<double> assignment_options() {
-  massspring::FastMassSpringOptions<double> o;
-  o.iterations = kIterations;
-  o.pins = massspring::PinMode::Penalty;
-  o.penalty_weight = kPenaltyWeight;
-  o.external_force = massspring::Vector3<double>(0, -9.8, 0);
-  o.initial_guess = massspring::InitialGuess::Current;
-  return o;
-}
-
-SeedFastMassSpring::Options seed_options() {
-  SeedFastMassSpring::Options o;
-  o.iterations = kIterations;
-  o.penalty_weight = kPenaltyWeight;
-  o.external_force = Eigen::RowVector3d(0, -9.8, 0);
-  return o;
-}
+// Time to error: the accelerated solvers, per scene.
+struct Acceleration {
+  double e0 = 0, e_star = 0, e_plain = 0;  // E(x_0), converged E*, E after 50 plain iterations
+  int chebyshev = -1, anderson = -1;       // iterations that reach e_plain (-1: not within 50)
+  double chebyshev_rho = 0;
+  [[nodiscard]] double error(double e) const { return (e - e_star) / (e0 - e_star); }
+};
 
 struct Scene {
   std::string name;
+  bool gravity = false;  // m g (the curtain) instead of the assignment's (0, -9.8, 0) N per point
+  bool accelerate = false;
   std::shared_ptr<const SparseSystem> sparse;
-  std::shared_ptr<const DenseSystem> dense;  // null: Dense is not run on this scene
+  std::shared_ptr<const DenseSystem> dense;   // null: Dense is not run on this scene
+  std::shared_ptr<const FloatSystem> single;  // float, for exact pins
+  std::shared_ptr<const SparseSystem> warm;   // after kWarmFrames plain steps (accelerate)
+  Acceleration acceleration;
 };
 
 std::vector<Scene>& scenes() {
   static std::vector<Scene> s;
   return s;
+}
+
+template <class Scalar>
+massspring::FastMassSpringOptions<Scalar> options_for(const Scene& scene) {
+  massspring::FastMassSpringOptions<Scalar> o;
+  o.iterations = kIterations;
+  o.pins = massspring::PinMode::Penalty;
+  o.penalty_weight = Scalar(kPenaltyWeight);
+  (scene.gravity ? o.gravity : o.external_force) = massspring::Vector3<Scalar>(0, Scalar(-9.8), 0);
+  o.initial_guess = massspring::InitialGuess::Current;
+  return o;
+}
+
+SeedFastMassSpring::Options seed_options(const Scene& scene) {
+  SeedFastMassSpring::Options o;
+  o.iterations = kIterations;
+  o.penalty_weight = kPenaltyWeight;
+  o.external_force = scene.gravity ? Eigen::RowVector3d::Zero() : Eigen::RowVector3d(0, -9.8, 0);
+  o.gravity = scene.gravity ? Eigen::RowVector3d(0, -9.8, 0) : Eigen::RowVector3d::Zero();
+  return o;
 }
 
 template <class System>
@@ -114,7 +134,7 @@ void set_counters(benchmark::State& state, const System& system, Eigen::Index fa
 template <class Solver, class System>
 bool precompute_or_skip(benchmark::State& state, Solver& solver, const System& system) {
   try {
-    solver.precompute(system, kDt);
+    solver.precompute(system, typename System::Scalar(kDt));
     return true;
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
@@ -123,11 +143,11 @@ bool precompute_or_skip(benchmark::State& state, Solver& solver, const System& s
 }
 
 template <class System>
-void bm_precompute(benchmark::State& state, const System& proto) {
+void bm_precompute(benchmark::State& state, const Scene& scene, const System& proto) {
   Eigen::Index nnz = 0;
   try {
     for (auto _ : state) {
-      massspring::FastMassSpring<System> solver(assignment_options());
+      massspring::FastMassSpring<System> solver(options_for<typename System::Scalar>(scene));
       solver.precompute(proto, kDt);
       nnz = solver.factor_nonzeros();
       benchmark::DoNotOptimize(nnz);
@@ -140,13 +160,29 @@ void bm_precompute(benchmark::State& state, const System& proto) {
   state.SetLabel(std::string(storage_name<System>()) + ": build Q, factorise");
 }
 
-template <class System>
-void bm_step(benchmark::State& state, const System& proto) {
-  System system = proto;
-  massspring::FastMassSpring<System> solver(assignment_options());
+// One step per benchmark iteration. Options: the scene's, changed by `adjust`. With a `start`
+// state, every step starts from it (the accelerated solvers' iteration counts hold for that step).
+template <class System, class Adjust>
+void bm_step(benchmark::State& state, const Scene& scene, const System& proto, Adjust adjust,
+             const System* start, const char* label) {
+  using Scalar = typename System::Scalar;
+  System system = start ? *start : proto;
+  auto options = options_for<Scalar>(scene);
+  adjust(options);
+  massspring::FastMassSpring<System> solver(options);
   if (!precompute_or_skip(state, solver, system)) return;
+  if (start) {  // untimed: a first step (Chebyshev estimates its rho on it)
+    solver.step(system);
+    system = *start;
+  }
   double iterations = 0, steps = 0;
   for (auto _ : state) {
+    if (start) {
+      state.PauseTiming();
+      system.positions() = start->positions();
+      system.velocities() = start->velocities();
+      state.ResumeTiming();
+    }
     const massspring::StepReport report = solver.step(system);
     if (!report.finite) {
       state.SkipWithError("step() result not finite");
@@ -156,22 +192,26 @@ void bm_step(benchmark::State& state, const System& proto) {
     steps += 1;
   }
   set_counters(state, proto, solver.factor_nonzeros(), steps > 0 ? iterations / steps : 0);
-  state.SetLabel(std::string(storage_name<System>()) + ": one step");
+  state.SetLabel(label);
 }
 
-// The floor of one iteration: the Cholesky solve FastMassSpring's global step does, on the factor
-// of FastMassSpring's own Q, for an n x 3 right-hand side, and nothing else.
-template <class System>
-void bm_floor(benchmark::State& state, const System& proto) {
-  massspring::FastMassSpring<System> solver(assignment_options());
+// The floor of one iteration: one forward and one back substitution with the factor of
+// FastMassSpring's own Q, for an n x 3 right-hand side in the factor's row order (as FastMassSpring
+// keeps its iterate), and nothing else.
+template <class System, class Adjust>
+void bm_floor(benchmark::State& state, const Scene& scene, const System& proto, Adjust adjust) {
+  using Scalar = typename System::Scalar;
+  auto options = options_for<Scalar>(scene);
+  adjust(options);
+  massspring::FastMassSpring<System> solver(options);
   typename System::Traits::Cholesky cholesky;
   if (!precompute_or_skip(state, solver, proto)) return;
   if (!cholesky.compute(solver.system_matrix())) {
     state.SkipWithError("Q is not positive definite");
     return;
   }
-  // In the factor's own row order, as FastMassSpring keeps its iterate: no permutation.
-  massspring::Points<double> x = massspring::Points<double>::Random(proto.num_points(), 3);
+  const Eigen::Index rows = solver.system_matrix().rows();
+  massspring::Points<Scalar> x = massspring::Points<Scalar>::Random(rows, 3);
   for (auto _ : state) {
     cholesky.solve_in_place(x.data());
     benchmark::DoNotOptimize(x.data());
@@ -181,14 +221,17 @@ void bm_floor(benchmark::State& state, const System& proto) {
   state.SetLabel(std::string(storage_name<System>()) + ": one L, L^T solve, n x 3");
 }
 
+const auto kSeedLike = [](auto&) {};
+const auto kExact = [](auto& o) { o.pins = massspring::PinMode::Exact; };
+
 // ---- the seed
 // ------------------------------------------------------------------------------------
 
-void bm_seed_precompute(benchmark::State& state, const SparseSystem& proto) {
+void bm_seed_precompute(benchmark::State& state, const Scene& scene, const SparseSystem& proto) {
   Eigen::Index nnz = 0;
   try {
     for (auto _ : state) {
-      SeedFastMassSpring seed(seed_options());
+      SeedFastMassSpring seed(seed_options(scene));
       seed.precompute(proto, kDt);
       nnz = seed.factor_nonzeros();
       benchmark::DoNotOptimize(nnz);
@@ -201,8 +244,8 @@ void bm_seed_precompute(benchmark::State& state, const SparseSystem& proto) {
   state.SetLabel("seed: Q by sparse products, factorise");
 }
 
-void bm_seed_step(benchmark::State& state, const SparseSystem& proto) {
-  SeedFastMassSpring seed(seed_options());
+void bm_seed_step(benchmark::State& state, const Scene& scene, const SparseSystem& proto) {
+  SeedFastMassSpring seed(seed_options(scene));
   if (!precompute_or_skip(state, seed, proto)) return;
   for (auto _ : state) {
     seed.step();
@@ -213,8 +256,8 @@ void bm_seed_step(benchmark::State& state, const SparseSystem& proto) {
 }
 
 // Eigen's own solve on the seed's factor: the seed's global step without its local step.
-void bm_eigen_solve(benchmark::State& state, const SparseSystem& proto) {
-  SeedFastMassSpring seed(seed_options());
+void bm_eigen_solve(benchmark::State& state, const Scene& scene, const SparseSystem& proto) {
+  SeedFastMassSpring seed(seed_options(scene));
   if (!precompute_or_skip(state, seed, proto)) return;
   const Eigen::MatrixXd b = Eigen::MatrixXd::Random(proto.num_points(), 3);
   Eigen::MatrixXd x(proto.num_points(), 3);
@@ -237,12 +280,12 @@ std::map<std::string, double>& first_step_differences() {
 
 // |X_ours - X_seed| / |X_seed| after one step from rest.
 template <class System>
-double first_step_difference(const System& proto, const SparseSystem& sparse) {
+double first_step_difference(const Scene& scene, const System& proto, const SparseSystem& sparse) {
   System system = proto;
-  massspring::FastMassSpring<System> ours(assignment_options());
+  massspring::FastMassSpring<System> ours(options_for<double>(scene));
   ours.precompute(system, kDt);
   ours.step(system);
-  SeedFastMassSpring seed(seed_options());
+  SeedFastMassSpring seed(seed_options(scene));
   seed.precompute(sparse, kDt);
   seed.step();
   const Eigen::MatrixXd x = system.positions();
@@ -267,13 +310,85 @@ void check_agreement() {
                      "1e-9): the timings below compare different computations\n",
                      key.c_str(), d);
     };
-    check("Sparse", [&s] { return first_step_difference(*s.sparse, *s.sparse); });
-    if (s.dense) check("Dense", [&s] { return first_step_difference(*s.dense, *s.sparse); });
+    check("Sparse", [&s] { return first_step_difference(s, *s.sparse, *s.sparse); });
+    if (s.dense) check("Dense", [&s] { return first_step_difference(s, *s.dense, *s.sparse); });
+  }
+}
+
+// ---- time to error (untimed set-up)
+// -------------------------------------------------------------------------------
+
+// E(X) of DESIGN.md for the step from `start` with penalty pins, written out term by term: the
+// objective every solver here minimises (report.energy is the same function).
+double step_energy(const Scene& scene, const SparseSystem& start, const Eigen::MatrixXd& x) {
+  const auto& springs = start.springs();
+  double e = 0;
+  for (int s = 0; s < start.num_springs(); ++s) {
+    const double l = (x.row(springs(s, 0)) - x.row(springs(s, 1))).norm();
+    e += 0.5 * start.stiffness()(s) * (l - start.rest_lengths()(s)) * (l - start.rest_lengths()(s));
+  }
+  for (int i = 0; i < start.num_points(); ++i) {
+    const double m = start.masses()(i);
+    const Eigen::RowVector3d y = start.positions().row(i) + kDt * start.velocities().row(i);
+    const Eigen::RowVector3d f =
+        scene.gravity ? Eigen::RowVector3d(0, -9.8 * m, 0) : Eigen::RowVector3d(0, -9.8, 0);
+    e += m / (2 * kDt * kDt) * (x.row(i) - y).squaredNorm() - x.row(i).dot(f);
+  }
+  for (int p = 0; p < start.num_pinned(); ++p)
+    e += 0.5 * kPenaltyWeight *
+         (x.row(start.pinned()[std::size_t(p)]) - start.pin_targets().row(p)).squaredNorm();
+  return e;
+}
+
+template <class Adjust>
+double energy_after(const Scene& scene, const SparseSystem& start, int iterations, Adjust adjust,
+                    double* rho = nullptr) {
+  SparseSystem system = start;
+  auto options = options_for<double>(scene);
+  adjust(options);
+  options.iterations = iterations;
+  massspring::FastMassSpring<SparseSystem> solver(options);
+  solver.precompute(system, kDt);
+  const massspring::StepReport report = solver.step(system);
+  if (rho) *rho = solver.chebyshev_rho();
+  const double e = step_energy(scene, start, system.positions());
+  if (std::abs(report.energy - e) > 1e-9 * std::abs(e) + 1e-12)
+    std::fprintf(stderr, "WARNING: %s: report.energy %.17g differs from E %.17g\n",
+                 scene.name.c_str(), report.energy, e);
+  return e;
+}
+
+const auto kChebyshev = [](auto& o) { o.acceleration = massspring::Acceleration::Chebyshev; };
+const auto kAnderson = [](auto& o) { o.acceleration = massspring::Acceleration::Anderson; };
+
+void measure_acceleration(Scene& scene) {
+  auto warm = std::make_shared<SparseSystem>(*scene.sparse);
+  {
+    massspring::FastMassSpring<SparseSystem> solver(options_for<double>(scene));
+    solver.precompute(*warm, kDt);
+    for (int frame = 0; frame < kWarmFrames; ++frame) solver.step(*warm);
+  }
+  scene.warm = warm;
+  Acceleration& a = scene.acceleration;
+  a.e0 = step_energy(scene, *warm, warm->positions());
+  a.e_plain = energy_after(scene, *warm, kIterations, kSeedLike);
+  // E*: the lowest of long accelerated runs (each never increases E past its plain fallback).
+  a.e_star = std::min(energy_after(scene, *warm, 3000, kChebyshev),
+                      energy_after(scene, *warm, 3000, kAnderson));
+  for (int k = 1; k <= kIterations && (a.chebyshev < 0 || a.anderson < 0); ++k) {
+    if (a.chebyshev < 0 && energy_after(scene, *warm, k, kChebyshev, &a.chebyshev_rho) <= a.e_plain)
+      a.chebyshev = k;
+    if (a.anderson < 0 && energy_after(scene, *warm, k, kAnderson) <= a.e_plain) a.anderson = k;
   }
 }
 
 // ---- scenes and registration
 // ---------------------------------------------------------------------
+
+template <class System, class Description>
+std::shared_ptr<const System> make(const Description& d) {
+  return std::make_shared<const System>(massspring::make_system<System>(d));
+}
 
 void add_scenes() {
   for (const int n : kGridSizes) {
@@ -285,9 +400,33 @@ void add_scenes() {
     const auto description = massspring::make_cloth(o);
     Scene s;
     s.name = "cloth" + std::to_string(n);
-    s.sparse = std::make_shared<SparseSystem>(massspring::make_system<SparseSystem>(description));
-    if (n <= kDenseLimit)
-      s.dense = std::make_shared<DenseSystem>(massspring::make_system<DenseSystem>(description));
+    s.sparse = make<SparseSystem>(description);
+    s.single = make<FloatSystem>(description);
+    if (n <= kDenseLimit) s.dense = make<DenseSystem>(description);
+    scenes().push_back(std::move(s));
+  }
+  {
+    // Liu et al. 2013's curtain, as examples/project_scenes.hpp makes it (examples/scenes/curtain).
+    massspring::ClothOptions o;
+    o.columns = o.rows = 81;
+    o.width = o.height = 1.0;
+    o.shear = massspring::ClothShear::One;
+    o.bending = true;
+    o.plane = massspring::ClothPlane::Vertical;
+    o.pins = massspring::ClothPins::TopCorners;
+    o.stiffness = 1000;
+    o.mass.reset();
+    const auto description = massspring::make_cloth(o);
+    Scene s;
+    s.name = "curtain";
+    s.gravity = true;
+    s.accelerate = true;
+    s.sparse = make<SparseSystem>(description);
+    s.single = make<FloatSystem>(description);
+    if (s.sparse->num_points() != 6561 || s.sparse->num_springs() != 32158)
+      std::fprintf(stderr,
+                   "WARNING: the curtain has %d points and %d springs, not 6561 and 32158\n",
+                   s.sparse->num_points(), s.sparse->num_springs());
     scenes().push_back(std::move(s));
   }
   const std::filesystem::path jacobson =
@@ -303,7 +442,9 @@ void add_scenes() {
     try {
       Scene s;
       s.name = name;
+      s.accelerate = std::string(name) == "skirt";
       s.sparse = std::make_shared<SparseSystem>(massspring::io::load_scene<SparseSystem>(file));
+      s.single = std::make_shared<FloatSystem>(massspring::io::load_scene<FloatSystem>(file));
       scenes().push_back(std::move(s));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "WARNING: loading %s failed (%s); its benchmarks are not registered\n",
@@ -316,11 +457,13 @@ void add_scenes() {
                  name);
 #endif
   }
+  for (Scene& s : scenes())
+    if (s.accelerate) measure_acceleration(s);
 }
 
 void register_benchmarks() {
   // Steps and floors, the quantities of the summary, are repeated and summarised by their median;
-  // precompute once. Each benchmark runs ~0.2-1 s, the whole program a few minutes on 2 cores.
+  // precompute once.
   const auto once = [](benchmark::internal::Benchmark* b) {
     b->Unit(benchmark::kMillisecond)->MinTime(0.3)->UseRealTime();
   };
@@ -332,45 +475,81 @@ void register_benchmarks() {
         ->UseRealTime();
   };
   for (const Scene& s : scenes()) {
-    const auto sparse = s.sparse;
-    const auto dense = s.dense;
+    const Scene* sc = &s;
     const auto name = [&s](const char* what, const char* solver) {
       return std::string(what) + "/" + solver + "/" + s.name;
     };
-    once(benchmark::RegisterBenchmark(
-        name("Precompute", "Sparse").c_str(),
-        [sparse](benchmark::State& st) { bm_precompute(st, *sparse); }));
-    once(benchmark::RegisterBenchmark(
-        name("Precompute", "Seed").c_str(),
-        [sparse](benchmark::State& st) { bm_seed_precompute(st, *sparse); }));
-    if (dense)
-      once(benchmark::RegisterBenchmark(
-          name("Precompute", "Dense").c_str(),
-          [dense](benchmark::State& st) { bm_precompute(st, *dense); }));
-    repeated(benchmark::RegisterBenchmark(
-        name("Step", "Sparse").c_str(), [sparse](benchmark::State& st) { bm_step(st, *sparse); }));
-    repeated(benchmark::RegisterBenchmark(
-        name("Step", "Seed").c_str(),
-        [sparse](benchmark::State& st) { bm_seed_step(st, *sparse); }));
-    if (dense)
-      repeated(benchmark::RegisterBenchmark(
-          name("Step", "Dense").c_str(), [dense](benchmark::State& st) { bm_step(st, *dense); }));
-    repeated(
-        benchmark::RegisterBenchmark(name("Floor", "Sparse").c_str(),
-                                     [sparse](benchmark::State& st) { bm_floor(st, *sparse); }));
-    repeated(benchmark::RegisterBenchmark(
-        name("Floor", "EigenSolve").c_str(),
-        [sparse](benchmark::State& st) { bm_eigen_solve(st, *sparse); }));
-    if (dense)
-      repeated(benchmark::RegisterBenchmark(
-          name("Floor", "Dense").c_str(), [dense](benchmark::State& st) { bm_floor(st, *dense); }));
+    const auto reg = [&](auto how, const char* what, const char* solver, auto body) {
+      how(benchmark::RegisterBenchmark(name(what, solver).c_str(), body));
+    };
+    reg(once, "Precompute", "Sparse",
+        [sc](benchmark::State& st) { bm_precompute(st, *sc, *sc->sparse); });
+    reg(once, "Precompute", "Seed",
+        [sc](benchmark::State& st) { bm_seed_precompute(st, *sc, *sc->sparse); });
+    if (s.dense)
+      reg(once, "Precompute", "Dense",
+          [sc](benchmark::State& st) { bm_precompute(st, *sc, *sc->dense); });
+    reg(repeated, "Step", "Sparse", [sc](benchmark::State& st) {
+      bm_step(st, *sc, *sc->sparse, kSeedLike, static_cast<const SparseSystem*>(nullptr),
+              "Sparse: one step");
+    });
+    reg(repeated, "Step", "Seed",
+        [sc](benchmark::State& st) { bm_seed_step(st, *sc, *sc->sparse); });
+    if (s.dense)
+      reg(repeated, "Step", "Dense", [sc](benchmark::State& st) {
+        bm_step(st, *sc, *sc->dense, kSeedLike, static_cast<const DenseSystem*>(nullptr),
+                "Dense: one step");
+      });
+    reg(repeated, "Step", "SparseExact", [sc](benchmark::State& st) {
+      bm_step(st, *sc, *sc->sparse, kExact, static_cast<const SparseSystem*>(nullptr),
+              "Sparse, exact pins: one step");
+    });
+    reg(repeated, "Step", "SparseFloat", [sc](benchmark::State& st) {
+      bm_step(st, *sc, *sc->single, kExact, static_cast<const FloatSystem*>(nullptr),
+              "Sparse float, exact pins: one step");
+    });
+    reg(repeated, "Floor", "Sparse",
+        [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kSeedLike); });
+    reg(repeated, "Floor", "SparseExact",
+        [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kExact); });
+    reg(repeated, "Floor", "SparseFloat",
+        [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->single, kExact); });
+    reg(repeated, "Floor", "EigenSolve",
+        [sc](benchmark::State& st) { bm_eigen_solve(st, *sc, *sc->sparse); });
+    if (s.dense)
+      reg(repeated, "Floor", "Dense",
+          [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->dense, kSeedLike); });
+    if (s.accelerate && s.acceleration.chebyshev > 0) {
+      const int k = s.acceleration.chebyshev;
+      reg(repeated, "Step", "Chebyshev", [sc, k](benchmark::State& st) {
+        bm_step(
+            st, *sc, *sc->sparse,
+            [k](auto& o) {
+              kChebyshev(o);
+              o.iterations = k;
+            },
+            sc->warm.get(), "Sparse, Chebyshev: one step to the error of 50 plain iterations");
+      });
+    }
+    if (s.accelerate && s.acceleration.anderson > 0) {
+      const int k = s.acceleration.anderson;
+      reg(repeated, "Step", "Anderson", [sc, k](benchmark::State& st) {
+        bm_step(
+            st, *sc, *sc->sparse,
+            [k](auto& o) {
+              kAnderson(o);
+              o.iterations = k;
+            },
+            sc->warm.get(), "Sparse, Anderson: one step to the error of 50 plain iterations");
+      });
+    }
   }
 }
 
 // ---- the summary
 // ---------------------------------------------------------------------------------
 
-// The console reporter, recording each benchmark's real time per iteration [ms]: the median of
+// The console reporter, recording each benchmark's CPU time per iteration [ms]: the median of
 // its repetitions when it has them, else its one run.
 class RecordingReporter : public benchmark::ConsoleReporter {
  public:
@@ -380,8 +559,10 @@ class RecordingReporter : public benchmark::ConsoleReporter {
     benchmark::ConsoleReporter::ReportRuns(runs);
     for (const Run& run : runs) {
       if (run.error_occurred) continue;
+      // CPU time: these programs are single-threaded, and on a shared machine the wall clock also
+      // counts the time other processes held the core.
       const double ms =
-          run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit) * 1e3;
+          run.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(run.time_unit) * 1e3;
       const std::string& key = run.run_name.function_name;
       if (run.run_type == Run::RT_Iteration)
         single_[key].push_back(ms);
@@ -415,65 +596,105 @@ std::string cell(double value, const char* format) {
 
 double ratio(double a, double b) { return a >= 0 && b > 0 ? a / b : -1; }
 
+// The summary, as Markdown tables (scripts/plot_performance.py reads them back).
 void print_summary(const RecordingReporter& r) {
-  bool header = false;
+  const auto t = [&r](const Scene& s, const char* what, const char* solver) {
+    return r.ms(std::string(what) + "/" + solver + "/" + s.name);
+  };
+  std::printf(
+      "\n## summary: local-global step, Sparse, double, dt = 1/30, %d iterations, penalty pins "
+      "w = %g; medians [ms]\n\n"
+      "seed/ours: how many times faster our step is; it/floor: ms per iteration divided by one "
+      "L, L^T solve in the factor's order (Floor/Sparse); eigen solve: SimplicialLLT::solve on the "
+      "same n x 3 (the seed's); 1st diff: relative difference of ours and the seed after one "
+      "step\n\n",
+      kIterations, kPenaltyWeight);
+  std::printf(
+      "| scene | points | springs | nnz(L) | ours ms/step | ours ms/iteration | seed ms/step | "
+      "seed/ours | floor ms | eigen solve ms | ours it/floor | seed it/floor | ours precompute "
+      "ms | seed precompute ms | 1st diff |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Scene& s : scenes()) {
-    const auto t = [&](const char* what, const char* solver) {
-      return r.ms(std::string(what) + "/" + solver + "/" + s.name);
-    };
-    const double ours = t("Step", "Sparse"), seed = t("Step", "Seed"), floor = t("Floor", "Sparse");
+    const double ours = t(s, "Step", "Sparse"), seed = t(s, "Step", "Seed"),
+                 floor = t(s, "Floor", "Sparse");
     if (ours < 0 && seed < 0 && floor < 0) continue;
-    if (!header) {
-      std::printf(
-          "\nLocal-global step, Sparse, double: dt = 1/30, %d iterations, penalty pins w = %g; "
-          "medians [ms]\n"
-          "seed/ours: how many times faster our step is; it/floor: ms per iteration divided by "
-          "one L, L^T solve (Floor/Sparse);\n"
-          "eigen solve: SimplicialLLT::solve on the same n x 3 (the seed's); 1st diff: relative "
-          "difference of ours and the seed after one step\n\n",
-          kIterations, kPenaltyWeight);
-      std::printf("%-9s %7s %7s %9s | %10s %10s %9s | %9s %11s %9s %9s | %9s %9s | %9s\n", "scene",
-                  "points", "springs", "nnz(L)", "ours/step", "seed/step", "seed/ours", "floor",
-                  "eigen solve", "ours it/f", "seed it/f", "ours pre", "seed pre", "1st diff");
-      header = true;
-    }
-    massspring::FastMassSpring<SparseSystem> solver(assignment_options());
+    massspring::FastMassSpring<SparseSystem> solver(options_for<double>(s));
     solver.precompute(*s.sparse, kDt);
     const auto diff = first_step_differences().find("Sparse/" + s.name);
-    std::printf("%-9s %7d %7d %9ld | %10s %10s %9s | %9s %11s %9s %9s | %9s %9s | %9s\n",
+    std::printf("| %s | %d | %d | %ld | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
                 s.name.c_str(), s.sparse->num_points(), s.sparse->num_springs(),
                 long(solver.factor_nonzeros()), cell(ours, "%.3f").c_str(),
-                cell(seed, "%.3f").c_str(), cell(ratio(seed, ours), "%.2fx").c_str(),
-                cell(floor, "%.4f").c_str(), cell(t("Floor", "EigenSolve"), "%.4f").c_str(),
+                cell(ours / kIterations, "%.4f").c_str(), cell(seed, "%.3f").c_str(),
+                cell(ratio(seed, ours), "%.2fx").c_str(), cell(floor, "%.4f").c_str(),
+                cell(t(s, "Floor", "EigenSolve"), "%.4f").c_str(),
                 cell(ratio(ours / kIterations, floor), "%.2f").c_str(),
                 cell(ratio(seed / kIterations, floor), "%.2f").c_str(),
-                cell(t("Precompute", "Sparse"), "%.2f").c_str(),
-                cell(t("Precompute", "Seed"), "%.2f").c_str(),
+                cell(t(s, "Precompute", "Sparse"), "%.2f").c_str(),
+                cell(t(s, "Precompute", "Seed"), "%.2f").c_str(),
                 diff == first_step_differences().end() ? "-" : cell(diff->second, "%.1e").c_str());
   }
-  header = false;
+
+  std::printf(
+      "\n## acceleration: time to the step error of %d plain iterations (from the state after %d "
+      "plain steps), medians [ms]\n\n"
+      "error = (E(x_k) - E*) / (E(x_0) - E*), E* the lowest of 3000 Chebyshev and 3000 Anderson "
+      "iterations; k: iterations that reach E(x_50) of the plain iteration; seed/x: the seed's "
+      "step (50 iterations) divided by x's step of k iterations\n\n",
+      kIterations, kWarmFrames);
+  std::printf(
+      "| scene | plain error at 50 | rho (estimated) | Chebyshev k | Chebyshev ms | seed/Chebyshev "
+      "| Anderson k | Anderson ms | seed/Anderson | seed ms |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const Scene& s : scenes()) {
+    if (!s.accelerate) continue;
+    const Acceleration& a = s.acceleration;
+    const double seed = t(s, "Step", "Seed"), cheb = t(s, "Step", "Chebyshev"),
+                 anderson = t(s, "Step", "Anderson");
+    std::printf("| %s | %.3g | %.5f | %d | %s | %s | %d | %s | %s | %s |\n", s.name.c_str(),
+                a.error(a.e_plain), a.chebyshev_rho, a.chebyshev, cell(cheb, "%.3f").c_str(),
+                cell(ratio(seed, cheb), "%.1fx").c_str(), a.anderson,
+                cell(anderson, "%.3f").c_str(), cell(ratio(seed, anderson), "%.1fx").c_str(),
+                cell(seed, "%.3f").c_str());
+  }
+
+  std::printf("\n## float against double: exact pins, %d iterations, medians [ms]\n\n",
+              kIterations);
+  std::printf(
+      "| scene | double ms/step | float ms/step | double/float | double floor | float floor | "
+      "double it/floor | float it/floor |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const Scene& s : scenes()) {
+    const double d = t(s, "Step", "SparseExact"), f = t(s, "Step", "SparseFloat"),
+                 df = t(s, "Floor", "SparseExact"), ff = t(s, "Floor", "SparseFloat");
+    if (d < 0 && f < 0) continue;
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s |\n", s.name.c_str(),
+                cell(d, "%.3f").c_str(), cell(f, "%.3f").c_str(),
+                cell(ratio(d, f), "%.2fx").c_str(), cell(df, "%.4f").c_str(),
+                cell(ff, "%.4f").c_str(), cell(ratio(d / kIterations, df), "%.2f").c_str(),
+                cell(ratio(f / kIterations, ff), "%.2f").c_str());
+  }
+
+  bool header = false;
   for (const Scene& s : scenes()) {
     if (!s.dense) continue;
-    const auto t = [&](const char* what, const char* solver) {
-      return r.ms(std::string(what) + "/" + solver + "/" + s.name);
-    };
-    const double step = t("Step", "Dense"), floor = t("Floor", "Dense");
+    const double step = t(s, "Step", "Dense"), floor = t(s, "Floor", "Dense");
     if (step < 0 && floor < 0) continue;
     if (!header) {
       std::printf(
-          "\nDense against Sparse (ours), medians [ms]; it/f: ms per iteration / that "
+          "\n## Dense against Sparse (ours), medians [ms]; it/floor: ms per iteration / that "
           "storage's floor\n\n");
-      std::printf("%-9s %7s | %11s %11s | %11s %11s | %11s %11s\n", "scene", "points", "Dense pre",
-                  "Sparse pre", "Dense step", "Sparse step", "Dense it/f", "Sparse it/f");
+      std::printf(
+          "| scene | points | Dense precompute | Sparse precompute | Dense step | Sparse step | "
+          "Dense it/floor | Sparse it/floor |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
       header = true;
     }
-    const double sparse_step = t("Step", "Sparse");
-    std::printf("%-9s %7d | %11s %11s | %11s %11s | %11s %11s\n", s.name.c_str(),
-                s.dense->num_points(), cell(t("Precompute", "Dense"), "%.2f").c_str(),
-                cell(t("Precompute", "Sparse"), "%.2f").c_str(), cell(step, "%.3f").c_str(),
+    const double sparse_step = t(s, "Step", "Sparse");
+    std::printf("| %s | %d | %s | %s | %s | %s | %s | %s |\n", s.name.c_str(),
+                s.dense->num_points(), cell(t(s, "Precompute", "Dense"), "%.2f").c_str(),
+                cell(t(s, "Precompute", "Sparse"), "%.2f").c_str(), cell(step, "%.3f").c_str(),
                 cell(sparse_step, "%.3f").c_str(),
                 cell(ratio(step / kIterations, floor), "%.2f").c_str(),
-                cell(ratio(sparse_step / kIterations, t("Floor", "Sparse")), "%.2f").c_str());
+                cell(ratio(sparse_step / kIterations, t(s, "Floor", "Sparse")), "%.2f").c_str());
   }
   std::fflush(stdout);
 }

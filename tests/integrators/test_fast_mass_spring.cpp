@@ -619,3 +619,185 @@ TEST_CASE("invalid options and time steps are refused") {
   solver.options.external_force(0) = std::numeric_limits<double>::infinity();
   CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("external_force"), Error);
 }
+
+// ---- acceleration (Chebyshev, Anderson) and float -------------------------------------------
+
+TEST_CASE_TEMPLATE("accelerated local-global converges to the converged plain solution of the step",
+                   System, MS_DOUBLE_SYSTEMS) {
+  using massspring::Acceleration;
+  for (const PinMode mode : {PinMode::Exact, PinMode::Penalty}) {
+    CAPTURE(int(mode));
+    System start = small_cloth<System>();
+    FastMassSpring<System> warm;
+    warm.options.pins = mode;
+    warm.options.gravity = {0, -9.8, 0};
+    warm.precompute(start, 1.0 / 30);
+    warm.step(start);  // non-zero velocities
+    const StepProblem problem(start, warm.options, 1.0 / 30);
+
+    // The reference: plain local-global run to the end (monotone, linear convergence).
+    System plain = start;
+    warm.options.iterations = 20000;
+    REQUIRE(warm.step(plain).ok());
+    const Points<double> reference = plain.positions();
+    const double e_star = problem.energy(reference);
+    // ... which is a stationary point of E (the implicit Euler equations), independently checked.
+    // (relative to the inertial term's size, free points; as in the test of the plain solver).
+    const Points<double> g = problem.gradient(reference);
+    double residual = 0, scale = 0;
+    for (int i = 0; i < g.rows(); ++i) {
+      scale = std::max(scale, problem.m(i) / (problem.dt * problem.dt) *
+                                  (reference.row(i) - problem.x0.row(i)).norm());
+      if (!start.is_pinned(i)) residual = std::max(residual, g.row(i).norm());
+    }
+    REQUIRE(residual <= 1e-10 * scale);
+
+    for (const Acceleration acceleration : {Acceleration::Chebyshev, Acceleration::Anderson}) {
+      CAPTURE(int(acceleration));
+      System s = start;
+      FastMassSpring<System> solver;
+      solver.options.pins = mode;
+      solver.options.gravity = {0, -9.8, 0};
+      solver.options.acceleration = acceleration;
+      solver.options.iterations = 3000;
+      solver.precompute(s, 1.0 / 30);
+      const massspring::StepReport report = solver.step(s);
+      REQUIRE(report.ok());
+      CHECK(s.positions().allFinite());
+      CHECK(s.velocities().allFinite());
+      CHECK(relative_difference(s.positions(), reference) <= 1e-9);
+      CHECK(problem.energy(s.positions()) <= e_star + 1e-12 * std::abs(e_star));
+      if (acceleration == Acceleration::Chebyshev) {
+        CHECK(solver.chebyshev_rho() > 0.0);
+        CHECK(solver.chebyshev_rho() < 1.0);
+      }
+    }
+  }
+}
+
+TEST_CASE("accelerated local-global needs fewer iterations than plain for the same energy") {
+  using System = MassSpringSystem<double>;
+  using massspring::Acceleration;
+  System start = small_cloth<System>(12, 10);
+  FastMassSpring<System> solver;
+  solver.options.gravity = {0, -9.8, 0};
+  solver.precompute(start, 1.0 / 30);
+  solver.step(start);
+  const StepProblem problem(start, solver.options, 1.0 / 30);
+  System plain = start;
+  solver.options.iterations = 60;
+  solver.step(plain);
+  const double target = problem.energy(plain.positions());
+  for (const Acceleration acceleration : {Acceleration::Chebyshev, Acceleration::Anderson}) {
+    CAPTURE(int(acceleration));
+    System s = start;
+    FastMassSpring<System> fast;
+    fast.options.gravity = {0, -9.8, 0};
+    fast.options.acceleration = acceleration;
+    fast.options.iterations = 30;
+    fast.precompute(s, 1.0 / 30);
+    REQUIRE(fast.step(s).ok());
+    CHECK(problem.energy(s.positions()) <= target);
+  }
+}
+
+TEST_CASE_TEMPLATE("accelerated steps never return an energy above their start, nor non-finite",
+                   System, MS_SYSTEM_TYPES) {
+  using Scalar = typename System::Scalar;
+  using massspring::Acceleration;
+  for (const Acceleration acceleration : {Acceleration::Chebyshev, Acceleration::Anderson}) {
+    CAPTURE(int(acceleration));
+    System s = small_cloth<System>();
+    FastMassSpring<System> solver;
+    solver.options.gravity = {0, Scalar(-9.8), 0};
+    solver.options.acceleration = acceleration;
+    // A rho far too large and no delay: the iteration would diverge without its energy check.
+    solver.options.chebyshev_rho = Scalar(0.9999);
+    solver.options.chebyshev_delay = 1;
+    solver.options.initial_guess = InitialGuess::Inertial;
+    solver.precompute(s, Scalar(1.0 / 30));
+    for (int frame = 0; frame < 20; ++frame) {
+      const StepProblem problem(s, solver.options, 1.0 / 30);
+      const Points<double> x0 =
+          (s.positions() + Scalar(1.0 / 30) * s.velocities()).template cast<double>();
+      for (const int k : {1, 2, 3, 7, 15}) {
+        System copy = s;
+        solver.options.iterations = k;
+        const massspring::StepReport report = solver.step(copy);
+        REQUIRE(report.ok());
+        REQUIRE(copy.positions().allFinite());
+        const double tol = std::is_same_v<Scalar, float> ? 1e-5 : 1e-12;
+        const double e0 = problem.energy(x0),
+                     e = problem.energy(copy.positions().template cast<double>());
+        CHECK(e <= e0 + tol * std::abs(e0));
+      }
+      solver.options.iterations = 10;
+      REQUIRE(solver.step(s).ok());
+    }
+  }
+}
+
+TEST_CASE_TEMPLATE("accelerated step() allocates nothing", System, MS_SYSTEM_TYPES) {
+  using massspring::Acceleration;
+  for (const Acceleration acceleration : {Acceleration::Chebyshev, Acceleration::Anderson}) {
+    for (const double tolerance : {0.0, 1e-6}) {
+      CAPTURE(int(acceleration));
+      CAPTURE(tolerance);
+      System s = small_cloth<System>();
+      FastMassSpring<System> solver;
+      solver.options.acceleration = acceleration;
+      solver.options.tolerance = typename System::Scalar(tolerance);
+      solver.options.gravity = {0, -9.8f, 0};
+      solver.precompute(s, 1.0f / 30);
+      solver.step(s);  // Chebyshev estimates rho on its first step (no allocation either)
+      std::size_t allocations = 0;
+      {
+        massspring::test::CountAllocations count;
+        for (int frame = 0; frame < 3; ++frame) solver.step(s);
+        allocations = count.count();
+      }
+      CHECK(allocations == 0);
+      CHECK(s.positions().allFinite());
+    }
+  }
+}
+
+TEST_CASE("float with penalty pins is refused unless allowed, naming the problem") {
+  using System = MassSpringSystem<float>;
+  System s = chain<System>();
+  FastMassSpring<System> solver;
+  solver.options.pins = PinMode::Penalty;
+  CHECK_THROWS_WITH_AS(solver.precompute(s, 1.0f / 30),
+                       doctest::Contains("PinMode::Penalty in float"), Error);
+  solver.options.pins = PinMode::Exact;
+  solver.precompute(s, 1.0f / 30);
+  solver.options.pins = PinMode::Penalty;  // changed between steps: refused at the step
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("use PinMode::Exact"), Error);
+  solver.options.allow_float_penalty = true;
+  CHECK(solver.step(s).ok());
+  // double accepts penalty pins without the flag
+  MassSpringSystem<double> d = chain<MassSpringSystem<double>>();
+  FastMassSpring<MassSpringSystem<double>> dsolver;
+  dsolver.options.pins = PinMode::Penalty;
+  CHECK_NOTHROW(dsolver.precompute(d, 1.0 / 30));
+}
+
+TEST_CASE("invalid acceleration options are refused") {
+  using System = MassSpringSystem<double>;
+  System s = chain<System>();
+  FastMassSpring<System> solver;
+  solver.precompute(s, 0.1);
+  solver.options.chebyshev_rho = 1.0;
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("chebyshev_rho"), Error);
+  solver.options.chebyshev_rho = 0;
+  solver.options.chebyshev_gamma = 0;
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("chebyshev_gamma"), Error);
+  solver.options.chebyshev_gamma = 1;
+  solver.options.chebyshev_delay = 0;
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("chebyshev_delay"), Error);
+  solver.options.chebyshev_delay = 2;
+  solver.options.anderson_window = 0;
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("anderson_window"), Error);
+  solver.options.anderson_window = 17;
+  CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("anderson_window"), Error);
+}

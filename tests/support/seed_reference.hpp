@@ -30,7 +30,8 @@ namespace massspring::test {
 ///   y = M (2 U - U_prev) / dt^2 + F_ext + w C^T C U_rest;  X = U;
 ///   `iterations` times: D = A X, row e scaled to length r_e;  b = A^T K D + y;  X = Q^-1 b;
 ///   U_prev = U;  U = X.
-/// F_ext has `external_force` in every row (a force per point, not m g). Pins hold the rest
+/// F_ext has `external_force` in every row (a force per point, not m g), plus M g when the
+/// (non-seed) option `gravity` is set. Pins hold the rest
 /// positions U_rest, as in the seed; precompute() throws when a pin target differs from its rest
 /// position. A zero-length spring gets d_e = 0 (Eigen's normalized() of a zero row), where
 /// FastMassSpring keeps the spring's previous direction.
@@ -48,6 +49,9 @@ class SeedFastMassSpring {
     double penalty_weight = 1e10;
     /// @brief Force on every point [N], read by step(). The seed's (0, -9.8, 0).
     Eigen::RowVector3d external_force = Eigen::RowVector3d(0, -9.8, 0);
+    /// @brief An acceleration of every point [m/s^2] (a force m_i g, added to external_force),
+    /// read by step(). Not the seed's (it has none): zero by default. Liu 2013's curtain uses it.
+    Eigen::RowVector3d gravity = Eigen::RowVector3d::Zero();
   };
 
   /// @brief The options (see each field for when it is read).
@@ -96,7 +100,8 @@ class SeedFastMassSpring {
     if (options.iterations < 1)
       throw std::invalid_argument("SeedFastMassSpring: iterations must be >= 1");
     const Eigen::Index n = u_.rows();
-    const Eigen::MatrixXd f_ext = options.external_force.replicate(n, 1);
+    const Eigen::MatrixXd f_ext = options.external_force.replicate(n, 1) +
+                                  m_ * Eigen::MatrixXd(options.gravity.replicate(n, 1));
     const Eigen::MatrixXd y =
         m_ * (2.0 * u_ - u_prev_) / (dt_ * dt_) + f_ext + options.penalty_weight * (ctc_ * u_rest_);
     Eigen::MatrixXd x = u_;

@@ -382,7 +382,8 @@ class FastMassSpring {
     }
     std::partial_sum(spring_start_.begin(), spring_start_.end(), spring_start_.begin());
     mass_h2_.resize(nr_);
-    for (int r = 0; r < nr_; ++r) mass_h2_(r) = mass(point_[std::size_t(r)]) * inv_dt2 + drag_ / dt_;
+    for (int r = 0; r < nr_; ++r)
+      mass_h2_(r) = mass(point_[std::size_t(r)]) * inv_dt2 + drag_ / dt_;
 
     const Eigen::Index size = 3 * Eigen::Index(nx_), free_size = 3 * Eigen::Index(nr_);
     for (Buffer& b : buffers_) b.setZero(size);
@@ -934,8 +935,8 @@ class FastMassSpring {
   Cholesky llt_;
   std::array<Buffer, 5> buffers_;
   Buffer rhs0_, inertial_, force_, mass_h2_, targets_, penalty_targets_, direction_;
-  Scalar drag_ = 0;           // sum of the system's LinearDrag coefficients [N s/m]
-  bool other_terms_ = false;  // the system has force terms other than drag
+  Scalar drag_ = 0;            // sum of the system's LinearDrag coefficients [N s/m]
+  bool other_terms_ = false;   // the system has force terms other than drag
   Points<Scalar> term_force_;  // their force at the step's start
   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> df_, dg_;
   Eigen::Matrix<double, kMaxWindow, kMaxWindow> gram_ =

@@ -1,0 +1,106 @@
+// How FastMassSpring's cost grows with the cloth: grids N x N (make_cloth: quads with both
+// diagonals, top corners pinned, k = 1000 N/m, Voronoi masses, gravity m g, exact pins, dt = 1/30).
+//
+// Per grid: precompute time (build Q, order, factorise), nnz(L), the factor's bytes, time per
+// local-global iteration (steps of `--iterations` iterations), that time / (n log2 n), and the
+// process's peak resident memory so far (getrusage). Prints a Markdown table.
+//
+//   bench_scale                          # the sweep 32, 64, 128, 256, 512
+//   bench_scale --grid 1000 --frames 10  # one grid (1000 x 1000: a million points)
+//
+// Timing is wall clock (std::chrono::steady_clock), the median over the frames; this is a plain
+// program, not Google Benchmark, because one 1000 x 1000 precompute takes tens of seconds.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/scene/cloth.hpp>
+#include <massspring/scene/make_system.hpp>
+#include <massspring/storage/storage.hpp>
+#include <massspring/system/mass_spring_system.hpp>
+#include <string>
+#include <vector>
+
+namespace {
+
+using System = massspring::MassSpringSystem<double, massspring::Sparse>;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double peak_rss_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
+void run(int n, int frames, int iterations) {
+  const auto t_scene = Clock::now();
+  massspring::ClothOptions o;
+  o.columns = o.rows = n;
+  o.shear = massspring::ClothShear::Both;
+  o.pins = massspring::ClothPins::TopCorners;
+  o.stiffness = 1000;
+  System system = massspring::make_system<System>(massspring::make_cloth(o));
+  const double scene_s = seconds_since(t_scene);
+
+  massspring::FastMassSpring<System> solver;
+  solver.options.gravity = {0, -9.8, 0};
+  solver.options.iterations = iterations;
+  const auto t_pre = Clock::now();
+  solver.precompute(system, 1.0 / 30);
+  const double precompute_s = seconds_since(t_pre);
+
+  std::vector<double> per_iteration;
+  bool finite = true;
+  for (int frame = 0; frame < frames; ++frame) {
+    const auto t0 = Clock::now();
+    const massspring::StepReport r = solver.step(system);
+    per_iteration.push_back(seconds_since(t0) / std::max(r.iterations, 1));
+    finite = finite && r.ok();
+  }
+  std::sort(per_iteration.begin(), per_iteration.end());
+  const double it_ms = per_iteration[per_iteration.size() / 2] * 1e3;
+  const double points = double(system.num_points());
+  const double nlogn = points * std::log2(points);
+  std::printf("| %d | %d | %d | %.3f | %.3f | %ld | %.1f | %.4f | %.3f | %.1f | %s |\n", n,
+              system.num_points(), system.num_springs(), scene_s, precompute_s,
+              long(solver.factor_nonzeros()),
+              double(solver.factorization().factor_bytes()) / (1024.0 * 1024.0), it_ms,
+              it_ms * 1e6 / nlogn, peak_rss_mib(), finite ? "yes" : "NO");
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> grids = {32, 64, 128, 256, 512};
+  int frames = 5, iterations = 10;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--grid" && a + 1 < argc) {
+      grids = {std::atoi(argv[++a])};
+    } else if (arg == "--frames" && a + 1 < argc) {
+      frames = std::atoi(argv[++a]);
+    } else if (arg == "--iterations" && a + 1 < argc) {
+      iterations = std::atoi(argv[++a]);
+    } else {
+      std::fprintf(stderr,
+                   "usage: bench_scale [--grid N] [--frames F (5)] [--iterations K (10)]\n");
+      return 2;
+    }
+  }
+  std::printf(
+      "| grid | points | springs | scene s | precompute s | nnz(L) | factor MiB | ms/iteration | "
+      "ns/iteration / (n log2 n) | peak RSS MiB | finite |\n"
+      "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  for (const int n : grids) run(n, frames, iterations);
+  return 0;
+}
