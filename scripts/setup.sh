@@ -12,6 +12,7 @@ packages=(
   libcli11-dev                      # examples: command lines
   doctest-dev                       # tests
   libbenchmark-dev                  # benchmarks
+  libsuitesparse-dev                # benchmarks: CHOLMOD compared (optional for the library)
   python3 python3-matplotlib        # rendering pictures of frames
 )
 
