@@ -80,6 +80,8 @@ class BackwardEuler {
     dx_.setZero(3 * n);
     trial_.setZero(n, 3);
     f_trial_.setZero(n, 3);
+    moved_.setZero(n, 3);
+    trial_moved_.setZero(n, 3);
     setup(system);
     ready_ = true;
   }
@@ -107,13 +109,17 @@ class BackwardEuler {
     const bool has_potential = newton && options.line_search && potential_objective(system);
 
     x_ = x0 + h * v0;  // the inertial prediction: x + h v
+    moved_.setZero();  // x' - (x + h v), accumulated: v' = v + moved / h keeps v exactly when
+                       // nothing acts (computing (x' - x) / h would lose eps |x| / h)
     const auto& pinned = system.pinned();
-    for (std::size_t r = 0; r < pinned.size(); ++r)
+    for (std::size_t r = 0; r < pinned.size(); ++r) {
       x_.row(pinned[r]) = system.pin_targets().row(Eigen::Index(r));
+      moved_.row(pinned[r]) = x_.row(pinned[r]) - x0.row(pinned[r]) - h * v0.row(pinned[r]);
+    }
 
     const int iterations = newton ? options.max_iterations : 1;
     for (int it = 0; it < iterations; ++it) {
-      residual(system, x_, r_);  // r = h^2 F(x, (x - x0)/h) - M (x - x0 - h v0)
+      residual(system, x_, moved_, r_);
       report.residual = double(r_.cwiseAbs().maxCoeff() / (h * h));
       report.iterations = it + 1;
       if (!solve(system, newton)) {
@@ -123,14 +129,17 @@ class BackwardEuler {
       Scalar alpha = 1;
       if (newton && options.line_search) alpha = line_search(system, has_potential);
       Flat(x_.data(), dx_.size()) += alpha * dx_;
+      Flat(moved_.data(), dx_.size()) += alpha * dx_;
       const Scalar scale = 1 + x_.cwiseAbs().maxCoeff();
       if (newton && alpha * dx_.cwiseAbs().maxCoeff() <= options.tolerance * scale) {
         report.converged = true;
         break;
       }
     }
-    if (has_potential) report.energy = double(objective(system, x_));
-    v_ = (x_ - x0) / h;
+    if (has_potential) report.energy = double(objective(system, x_, moved_));
+    v_ = v0 + moved_ / h;
+    for (std::size_t r = 0; r < pinned.size(); ++r)
+      v_.row(pinned[r]) = (x_.row(pinned[r]) - x0.row(pinned[r])) / h;
     report.finite = x_.allFinite() && v_.allFinite();
     if (report.finite) {
       system.positions() = x_;
@@ -166,20 +175,19 @@ class BackwardEuler {
     return true;
   }
 
-  /// @brief r = h^2 F(x, (x - x0)/h) - M (x - x0 - h v0); zero on pinned rows.
-  void residual(const System& system, const PointsType& x, PointsType& r) {
+  /// @brief r = h^2 F(x, v0 + moved/h) - M moved, with moved = x - x0 - h v0 kept exactly (not
+  /// recomputed from x); zero on pinned rows.
+  void residual(const System& system, const PointsType& x, const PointsType& moved, PointsType& r) {
     const Scalar h = dt_;
-    v_ = (x - system.positions()) / h;
+    v_ = system.velocities() + moved / h;
     total_force(system, x, v_, f_);
-    r = h * h * f_ - (((x - system.positions()) - h * system.velocities()).array().colwise() *
-                      system.masses().array())
-                         .matrix();
+    r = h * h * f_ - (moved.array().colwise() * system.masses().array()).matrix();
     for (int i : system.pinned()) r.row(i).setZero();
   }
 
   /// @brief dx = A^-1 r at x_ (definite projection in Newton mode when A is indefinite).
   bool solve(const System& system, bool newton) {
-    v_ = (x_ - system.positions()) / dt_;
+    v_ = system.velocities() + moved_ / dt_;
     assembly_.assemble(system, x_, v_, dt_, false);
     bool ok = solver_.factorize(assembly_.matrix(), symmetric_);
     if (newton && (!ok || solver_.path() == LinearSolverPath::Indefinite)) {
@@ -192,14 +200,13 @@ class BackwardEuler {
     return dx_.allFinite();
   }
 
-  /// @brief Incremental potential 1/(2h^2) |x - x0 - h v0|_M^2 + E(x) + beta/(2h) |x - x0|^2.
-  Scalar objective(const System& system, const PointsType& x) const {
+  /// @brief Incremental potential 1/(2h^2) |moved|_M^2 + E(x) + beta/(2h) |x - x0|^2.
+  Scalar objective(const System& system, const PointsType& x, const PointsType& moved) const {
     const Scalar h = dt_;
     const PointsType& x0 = system.positions();
     Scalar inertia = 0;
     for (Eigen::Index i = 0; i < x.rows(); ++i)
-      inertia += system.masses()(i) *
-                 (x.row(i) - x0.row(i) - h * system.velocities().row(i)).squaredNorm();
+      inertia += system.masses()(i) * moved.row(i).squaredNorm();
     return inertia / (2 * h * h) + potential_energy(system, x) +
            drag_ / (2 * h) * (x - x0).squaredNorm();
   }
@@ -208,14 +215,16 @@ class BackwardEuler {
   Scalar line_search(const System& system, bool has_potential) {
     const Flat r(r_.data(), dx_.size());
     const Scalar slope = r.dot(dx_);  // -h^2 times the directional derivative of the objective
-    const Scalar f0 = has_potential ? objective(system, x_) : r.squaredNorm();
+    const Scalar f0 = has_potential ? objective(system, x_, moved_) : r.squaredNorm();
     Scalar alpha = 1;
     for (int k = 0; k < 40; ++k, alpha /= 2) {
       trial_ = x_;
       Flat(trial_.data(), dx_.size()) += alpha * dx_;
+      trial_moved_ = moved_;
+      Flat(trial_moved_.data(), dx_.size()) += alpha * dx_;
       Scalar f1;
       if (has_potential) {
-        f1 = objective(system, trial_);
+        f1 = objective(system, trial_, trial_moved_);
         if (f1 <= f0 - Scalar(1e-4) * alpha * slope / (dt_ * dt_)) return alpha;
         // Near the solution the objective's rounding (~eps |E|) hides the decrease: accept a
         // full step whose change is within that rounding.
@@ -223,7 +232,7 @@ class BackwardEuler {
                                                (std::abs(f0) + std::abs(f1)))
           return alpha;
       } else {
-        residual(system, trial_, f_trial_);
+        residual(system, trial_, trial_moved_, f_trial_);
         f1 = f_trial_.squaredNorm();
         if (f1 < f0 || f0 == 0) return alpha;
       }
@@ -234,7 +243,7 @@ class BackwardEuler {
   Scalar dt_ = 0;
   bool ready_ = false, symmetric_ = true;
   Scalar drag_ = 0;
-  PointsType x_, v_, f_, r_, trial_, f_trial_;
+  PointsType x_, v_, f_, r_, trial_, f_trial_, moved_, trial_moved_;
   Vector<Scalar> dx_;
   detail::JacobianAssembly<System> assembly_;
   LinearSolver<Storage, Scalar> solver_;
