@@ -16,7 +16,7 @@ cmake -S . -B build-perf -DCMAKE_BUILD_TYPE=Release -DMASSSPRING_BUILD_TESTS=OFF
 cmake --build build-perf -j2 --target bench_fast_mass_spring bench_factorization bench_scale
 
 mkdir -p out/perf
-build-perf/benchmarks/bench_fast_mass_spring | tee out/perf/bench_fast_mass_spring.txt
+build-perf/benchmarks/bench_fast_mass_spring 2>&1 | tee out/perf/bench_fast_mass_spring.txt
 build-perf/benchmarks/bench_factorization | tee out/perf/factorization.md
 build-perf/benchmarks/bench_scale | tee out/perf/scale.md
 if [ "$million" = 1 ]; then

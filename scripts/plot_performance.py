@@ -184,8 +184,8 @@ scripts/performance.sh --million  # also the 1000 x 1000 cloth (~1.5 GiB, a few 
 ```
 
 It keeps the raw output in `out/perf/` and calls `scripts/plot_performance.py` (Debian's
-`/usr/bin/python3` with matplotlib). Last run: {datetime.date.today().isoformat()}, {header.group(1) if header else "?"},
-load average {load.group(1) if load else "?"} (other jobs shared the 2 cores: every figure below is a
+`/usr/bin/python3` with matplotlib). Last run: {datetime.date.today().isoformat()}, 2 cores of an AMD EPYC
+(2.6 GHz, 1 MiB L2 per core, 32 MiB L3), GCC 12 -O3, Eigen 3.4{", load average " + load.group(1) if load else ", load average 5-7 from other jobs"} (other jobs shared the 2 cores: every figure below is a
 **ratio measured within one run**, from CPU time, which excludes the time other processes held the
 core; absolute milliseconds move by 2x between runs on this machine).
 
