@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <optional>
 #include <pugixml.hpp>
@@ -111,9 +112,12 @@ struct FosssimScene {
   /// 1e-9 (relative) of a whole number counts as that number, so 4.0 / 0.01 gives 400 whatever
   /// the rounding of 0.01.
   [[nodiscard]] long long steps() const { return steps_for(dt); }
-  /// @brief ceil(duration / h) with the same rounding rule, for another step h > 0.
+  /// @brief ceil(duration / h) with the same rounding rule, for another step h > 0 (saturating
+  /// at the largest long long).
   [[nodiscard]] long long steps_for(double h) const {
     const double q = duration / h;
+    // saturate rather than overflow (an absurd duration / h is still a number of steps)
+    if (!(q < 9.2e18)) return std::numeric_limits<long long>::max();
     const double nearest = std::round(q);
     if (std::abs(q - nearest) <= 1e-9 * std::max(1.0, nearest))
       return static_cast<long long>(nearest);
@@ -296,10 +300,16 @@ inline FosssimScene parse_fosssim_scene(const std::string& text, const std::stri
       const Vector3<double> g(r.number(node, "<simplegravity>", "fx"),
                               r.number(node, "<simplegravity>", "fy"), 0.0);
       scene.gravity = scene.gravity ? Vector3<double>(*scene.gravity + g) : g;
+      if (!scene.gravity->allFinite())
+        throw r.error(r.line(node), "<simplegravity>: the accelerations so far add up to ",
+                      massspring::detail::format_row(*scene.gravity), ", which is not finite");
     } else if (tag == "dragdamping") {
       r.check_attributes(node, "<dragdamping>", {"b"}, {});
       const double b = r.nonnegative(node, "<dragdamping>", "b", false);
       scene.drag = scene.drag.value_or(0.0) + b;
+      if (!std::isfinite(*scene.drag))
+        throw r.error(r.line(node), "<dragdamping>: the coefficients so far add up to ",
+                      *scene.drag, ", which is not finite");
     } else if (tag == "description") {
       r.check_attributes(node, "<description>", {"text"}, {});
       scene.description = node.attribute("text").value();
@@ -342,6 +352,8 @@ inline FosssimScene parse_fosssim_scene(const std::string& text, const std::stri
 
   // particles
   const int n = int(particles.size());
+  if (n == 0)
+    throw r.error(r.line(root), "<scene> has no <particle>: a scene needs at least one particle");
   scene.positions.setZero(n, 3);
   scene.velocities.setZero(n, 3);
   scene.masses.resize(n);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <type_traits>
@@ -40,36 +41,25 @@ std::string json_number(Scalar x) {
 
 }  // namespace detail
 
-/// @brief Reads a scene in the assignment's JSON+OBJ format.
-///
-/// The JSON object has the keys
-/// - `"obj"` (required string): the OBJ file, relative to the JSON file's folder, read with
-///   read_obj(); its polygons and 2-vertex faces become `faces` and `edges`;
-/// - `"b"` (required array of integers): the pinned vertices, **1-based** (the description holds
-///   them 0-based); may be empty;
-/// - `"k"` (required number >= 0): the stiffness of every spring [N/m];
-/// - `"m"` (optional number > 0): the mass of every vertex [kg]; when absent, make_system() gives
-///   each vertex its lumped Voronoi area (density 1 kg/m^2);
-/// - `"png"` (optional string): a texture, ignored.
-///
-/// @tparam Scalar float or double
-/// @param[in] json  the .json file
-/// @throws Error naming the file and the key for a missing, unknown, repeated or mistyped key,
-/// `"bc"` (pinned positions: not supported), a pin out of range (its 1-based value and its
-/// position in "b"), a non-finite or negative stiffness, a mass that is not > 0; naming the file
-/// with nlohmann's line and column when the text is not JSON; and read_obj()'s errors (file and
-/// line) for the OBJ file.
-template <class Scalar = double>
-SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
+/// @brief The reader behind read_json_scene(), on text in memory.
+/// @param[in] text      the JSON file's text
+/// @param[in] json      its path: named in messages; the `"obj"` key is relative to its folder
+/// @param[in] load_obj  `load_obj(path)` returns the OBJ file's ObjMesh<Scalar> (throwing Error
+///                      naming its file and line), or std::nullopt when there is no such file.
+///                      read_json_scene() passes read_obj(); a fuzzer or a test may parse text
+///                      held in memory.
+/// @throws Error as read_json_scene() does.
+template <class Scalar, class LoadObj>
+SceneDescription<Scalar> parse_json_scene(const std::string& text,
+                                          const std::filesystem::path& json, LoadObj&& load_obj) {
   static_assert(std::is_floating_point_v<Scalar>,
-                "read_json_scene<Scalar>: Scalar must be float or double");
+                "parse_json_scene<Scalar>: Scalar must be float or double");
   using Json = nlohmann::json;
   const std::string name = json.string();
   auto error = [&name](const auto&... parts) {
     return Error(detail::message(name, ": ", parts...));
   };
 
-  const std::string text = detail::read_text_file(json, "JSON scene");
   std::set<std::string> seen;
   Json root;
   try {
@@ -140,10 +130,13 @@ SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
     throw error("key \"png\": expected the name of a texture image (a string), got ",
                 detail::describe_json(*png));
 
-  if (!std::filesystem::exists(obj_path))
-    throw error("key \"obj\": OBJ file ", obj_path.string(), " not found");
-  ObjMesh<Scalar> mesh = read_obj<Scalar>(obj_path);
+  std::optional<ObjMesh<Scalar>> loaded = load_obj(obj_path);
+  if (!loaded) throw error("key \"obj\": OBJ file ", obj_path.string(), " not found");
+  ObjMesh<Scalar> mesh = std::move(*loaded);
   const auto n = static_cast<std::int64_t>(mesh.vertices.rows());
+  if (n == 0)
+    throw error("key \"obj\": OBJ file ", obj_path.string(),
+                " has no vertices: a scene needs at least one point");
 
   scene.pinned.reserve(b.size());
   for (std::size_t p = 0; p < b.size(); ++p) {
@@ -159,6 +152,35 @@ SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
   scene.faces = std::move(mesh.faces);
   scene.edges = std::move(mesh.edges);
   return scene;
+}
+
+/// @brief Reads a scene in the assignment's JSON+OBJ format.
+///
+/// The JSON object has the keys
+/// - `"obj"` (required string): the OBJ file, relative to the JSON file's folder, read with
+///   read_obj(); its polygons and 2-vertex faces become `faces` and `edges`;
+/// - `"b"` (required array of integers): the pinned vertices, **1-based** (the description holds
+///   them 0-based); may be empty;
+/// - `"k"` (required number >= 0): the stiffness of every spring [N/m];
+/// - `"m"` (optional number > 0): the mass of every vertex [kg]; when absent, make_system() gives
+///   each vertex its lumped Voronoi area (density 1 kg/m^2);
+/// - `"png"` (optional string): a texture, ignored.
+///
+/// @tparam Scalar float or double
+/// @param[in] json  the .json file
+/// @throws Error naming the file and the key for a missing, unknown, repeated or mistyped key,
+/// `"bc"` (pinned positions: not supported), a pin out of range (its 1-based value and its
+/// position in "b"), a non-finite or negative stiffness, a mass that is not > 0; naming the file
+/// with nlohmann's line and column when the text is not JSON; and read_obj()'s errors (file and
+/// line) for the OBJ file.
+template <class Scalar = double>
+SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
+  const std::string text = detail::read_text_file(json, "JSON scene");
+  return parse_json_scene<Scalar>(
+      text, json, [](const std::filesystem::path& obj_path) -> std::optional<ObjMesh<Scalar>> {
+        if (!std::filesystem::exists(obj_path)) return std::nullopt;
+        return read_obj<Scalar>(obj_path);
+      });
 }
 
 /// @brief Writes a scene in the assignment's JSON+OBJ format: `<stem>.obj` beside `json` (with
