@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Set-up, configure, build (tests, examples, benchmarks; warnings are errors), run every test.
+# Every test includes the long soak tests (label soak, a few minutes; `scripts/test.sh -LE soak`
+# leaves them out). Sanitizers: scripts/sanitize.sh.
 # Usage: scripts/test.sh [extra ctest arguments]
 # Env: BUILD_DIR (default build), MASSSPRING_SHARED_DIR (default ../shared beside the checkout),
 #      MASSSPRING_REQUIRE_SHARED=1 to fail when those scenes are missing (CI sets it).
