@@ -15,7 +15,7 @@
 #include <random>
 
 #include "support/alloc_counter.hpp"
-#include "support/oscillator.hpp"
+#include "support/small_systems.hpp"
 
 namespace {
 
@@ -26,25 +26,6 @@ using massspring::Sparse;
 using Points = massspring::Points<double>;
 using SystemD = massspring::MassSpringSystem<double, Dense>;
 using SystemS = massspring::MassSpringSystem<double, Sparse>;
-
-template <class System>
-System hanging_cloth(unsigned seed = 1) {
-  massspring::ClothOptions o;
-  o.columns = 6;
-  o.rows = 5;
-  o.width = 0.5;
-  o.height = 0.4;
-  o.stiffness = 80;
-  o.shear = massspring::ClothShear::Both;
-  System s = massspring::make_system<System>(massspring::make_cloth(o));
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-0.02, 0.02);
-  Points x = s.positions();
-  for (int i = 0; i < x.rows(); ++i)
-    if (!s.is_pinned(i)) x.row(i) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
-  s.set_positions(x);
-  return s;
-}
 
 }  // namespace
 
@@ -85,14 +66,7 @@ TEST_CASE("BackwardEuler is first order: halving h halves the error") {
 }
 
 TEST_CASE("BackwardEuler: an orbit spirals in, and energy decreases every step") {
-  Points x = Points::Zero(2, 3);
-  x(1, 0) = 1;
-  SystemS s(x, massspring::Edges(0, 2), 1.0, 0.0);
-  s.pin(0);
-  Points v = Points::Zero(2, 3);
-  v(1, 1) = 1;
-  s.set_velocities(v);
-  s.add_force(massspring::GravitationalAttraction<double>({{0, 1, 1.0}}));
+  auto s = massspring::test::orbit<SystemS>();
   BackwardEuler<SystemS> be;
   be.precompute(s, 1e-2);
   double e = massspring::total_energy(s);
@@ -108,7 +82,7 @@ TEST_CASE("BackwardEuler: an orbit spirals in, and energy decreases every step")
 
 TEST_CASE("Newton backward Euler and local-global converged agree on the same step") {
   for (auto pins : {massspring::PinMode::Exact}) {
-    auto a = hanging_cloth<SystemS>();
+    auto a = massspring::test::perturbed_cloth<SystemS>();
     auto b = a;
     const double h = 1.0 / 30;
     massspring::FastMassSpring<SystemS> lg;
@@ -134,8 +108,8 @@ TEST_CASE("Newton backward Euler and local-global converged agree on the same st
 }
 
 TEST_CASE("BackwardEuler: Dense equals Sparse; pins stay put; drag and damping terms") {
-  auto d = hanging_cloth<SystemD>();
-  auto s = hanging_cloth<SystemS>();
+  auto d = massspring::test::perturbed_cloth<SystemD>();
+  auto s = massspring::test::perturbed_cloth<SystemS>();
   for (int mode = 0; mode < 2; ++mode) {
     auto dd = d;
     auto ss = s;
@@ -227,7 +201,7 @@ TEST_CASE("BackwardEuler with Dense storage allocates nothing in step()") {
   // Sparse storage allocates inside Eigen's numeric factorisation (a permuted copy of A per
   // solve); Dense assembles and factorises into storage sized by precompute().
   for (auto mode : {BackwardEulerMode::Linearized, BackwardEulerMode::Newton}) {
-    auto s = hanging_cloth<SystemD>();
+    auto s = massspring::test::perturbed_cloth<SystemD>();
     s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
     BackwardEuler<SystemD> be;
     be.options.mode = mode;

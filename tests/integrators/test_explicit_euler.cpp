@@ -12,7 +12,7 @@
 #include <massspring/scene/make_system.hpp>
 
 #include "support/alloc_counter.hpp"
-#include "support/oscillator.hpp"
+#include "support/small_systems.hpp"
 
 namespace {
 
@@ -21,21 +21,6 @@ using massspring::Sparse;
 using Points = massspring::Points<double>;
 using SystemD = massspring::MassSpringSystem<double, Dense>;
 using SystemS = massspring::MassSpringSystem<double, Sparse>;
-
-// Sun (pinned, mass 1) at the origin, planet (mass 1e-3... any) on a circle of radius 1 with
-// G M = 1: speed 1, period 2 pi. Pinning the sun keeps it fixed, as AccuracyTests does.
-template <class System>
-System orbit() {
-  Points x = Points::Zero(2, 3);
-  x(1, 0) = 1;
-  System s(x, massspring::Edges(0, 2), 1.0, 0.0);
-  s.pin(0);
-  Points v = Points::Zero(2, 3);
-  v(1, 1) = 1;
-  s.set_velocities(v);
-  s.add_force(massspring::GravitationalAttraction<double>({{0, 1, 1.0}}));
-  return s;
-}
 
 template <template <class> class Integrator, class Step>
 void check_recurrence(Step scheme) {
@@ -94,8 +79,8 @@ TEST_CASE("Forward and symplectic Euler are first order: halving h halves the er
 TEST_CASE("Orbits: forward Euler spirals out, symplectic Euler stays on the circle") {
   const double h = 1e-3;
   const int steps = int(std::lround(2 * M_PI / h));  // one period
-  auto a = orbit<SystemS>();
-  auto b = orbit<SystemS>();
+  auto a = massspring::test::orbit<SystemS>();
+  auto b = massspring::test::orbit<SystemS>();
   massspring::ForwardEuler<SystemS> fe;
   massspring::SymplecticEuler<SystemS> se;
   fe.precompute(a, h);
@@ -117,7 +102,7 @@ TEST_CASE("Orbits: forward Euler spirals out, symplectic Euler stays on the circ
 }
 
 TEST_CASE("Symplectic Euler keeps the orbit's energy bounded over 1e5 steps") {
-  auto s = orbit<SystemS>();
+  auto s = massspring::test::orbit<SystemS>();
   massspring::SymplecticEuler<SystemS> se;
   const double h = 1e-2;
   se.precompute(s, h);

@@ -12,27 +12,17 @@
 #include <massspring/scene/make_system.hpp>
 #include <random>
 
+#include "support/small_systems.hpp"
+
 namespace {
 
 using massspring::FastMassSpring;
 using System = massspring::MassSpringSystem<double, massspring::Sparse>;
 using Points = massspring::Points<double>;
 
+// The cloth of support/small_systems.hpp with the generator's default shear.
 System cloth(unsigned seed = 2) {
-  massspring::ClothOptions o;
-  o.columns = 6;
-  o.rows = 5;
-  o.width = 0.5;
-  o.height = 0.4;
-  o.stiffness = 80;
-  System s = massspring::make_system<System>(massspring::make_cloth(o));
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-0.02, 0.02);
-  Points x = s.positions();
-  for (int i = 0; i < x.rows(); ++i)
-    if (!s.is_pinned(i)) x.row(i) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
-  s.set_positions(x);
-  return s;
+  return massspring::test::perturbed_cloth<System>(seed, massspring::ClothOptions{}.shear);
 }
 
 // A user's term: a linear tether to the origin, F = -c x (not constant: it depends on x).
