@@ -10,13 +10,16 @@
 //        options say otherwise)
 //
 // Exit status: 0 on success, 1 for invalid input, 2 when a step diverged (the frames written so
-// far are kept).
+// far are kept), 130 when interrupted by SIGINT or SIGTERM (the current step is finished and its
+// frame written, the CSV closed). Every output file is written to <file>.tmp and renamed into
+// place, so no reader ever sees a truncated frame or CSV.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +38,24 @@ namespace {
 namespace fs = std::filesystem;
 using massspring::Edges;
 using massspring::Error;
+
+// Set by SIGINT and SIGTERM; the step loop stops after the step in progress.
+volatile std::sig_atomic_t g_interrupted = 0;  // NOLINT: written by a signal handler
+
+extern "C" void on_interrupt(int) { g_interrupted = 1; }
+
+void install_interrupt_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  // writes in progress continue; a second signal ends the program at once (the files already
+  // renamed into place are whole; a .tmp file may be left)
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
 
 struct Config {
   std::string scene;     // a .json or .xml scene file, or empty
@@ -117,11 +138,22 @@ class TrajectoryCsv {
     out_.close();
     if (!out_) throw Error(path_.string() + ": write failed");
     fs::rename(tmp_, path_);
+    closed_ = true;
   }
+  // An unfinished CSV (an error while running) leaves no temporary file behind.
+  ~TrajectoryCsv() {
+    if (closed_) return;
+    out_.close();
+    std::error_code ignored;
+    fs::remove(tmp_, ignored);
+  }
+  TrajectoryCsv(const TrajectoryCsv&) = delete;
+  TrajectoryCsv& operator=(const TrajectoryCsv&) = delete;
 
  private:
   fs::path path_, tmp_;
   std::ofstream out_;
+  bool closed_ = false;
 };
 
 double percentile(std::vector<double> v, double p) {
@@ -185,8 +217,12 @@ int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& w
   if (!c.out.empty()) fs::create_directories(c.out);
   std::optional<TrajectoryCsv> csv;
   if (!c.csv.empty()) csv.emplace(c.csv);
-  auto write_frame = [&](int frame) {
-    if (frame % c.every != 0 && frame != s.steps) return;
+  // `always`: the last frame of an interrupted run is written whatever --every says.
+  int last_written = -1;
+  auto write_frame = [&](int frame, bool always = false) {
+    if (frame == last_written) return;
+    if (frame % c.every != 0 && frame != s.steps && !always) return;
+    last_written = frame;
     if (!c.out.empty()) {
       char file[32];
       std::snprintf(file, sizeof file, "frame_%05d.obj", frame);
@@ -198,10 +234,16 @@ int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& w
 
   const massspring::Vector<Scalar> rest = system.rest_lengths();
   std::vector<double> ms;
-  ms.reserve(std::size_t(s.steps));
+  ms.reserve(std::size_t(std::min(s.steps, 1 << 20)));
   long long iterations = 0;
   int diverged_at = -1;
+  int interrupted_at = -1;
   for (int step = 1; step <= s.steps; ++step) {
+    if (g_interrupted) {  // SIGINT or SIGTERM since the last step: keep its frame, stop
+      interrupted_at = step - 1;
+      write_frame(step - 1, true);
+      break;
+    }
     if (c.shrink > 0)  // free: rest lengths do not change any matrix
       system.set_rest_lengths(rest * Scalar(std::exp(-c.shrink * s.dt * (step - 1))));
     const auto start = std::chrono::steady_clock::now();
@@ -236,6 +278,12 @@ int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& w
                  "with the last finite state (steps 0..%d written)\n",
                  diverged_at, diverged_at - 1);
     return 2;
+  }
+  if (interrupted_at >= 0) {
+    std::fprintf(stderr, "massspring-simulate: interrupted at frame %d; frames 0..%d written%s\n",
+                 interrupted_at, interrupted_at,
+                 c.every > 1 ? " (every --every-th and the last)" : "");
+    return kExitInterrupted;
   }
   return 0;
 }
@@ -385,6 +433,7 @@ int main(int argc, char** argv) {
   c.frames_given = frames->count() > 0;
   c.dt_given = dt->count() > 0;
 
+  install_interrupt_handlers();
   try {
     if (c.scene.empty() == c.generate.empty())
       throw Error("give either a scene file or --generate (see --help)");
