@@ -15,6 +15,7 @@ shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(fuzz_json_scene fuzz_fosssim_scene)
 
+scripts/setup.sh >/dev/null   # clang and libFuzzer among the rest (installs only what is missing)
 command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (scripts/setup.sh installs clang)" >&2; exit 1; }
 build=build-fuzz
 CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMASSSPRING_BUILD_FUZZERS=ON \

@@ -14,6 +14,7 @@ packages=(
   libbenchmark-dev                  # benchmarks
   libsuitesparse-dev                # benchmarks: CHOLMOD compared (optional for the library)
   python3 python3-matplotlib        # rendering pictures of frames
+  clang libclang-rt-14-dev          # fuzzing (scripts/fuzz.sh): clang++ and libFuzzer
 )
 
 missing=()
