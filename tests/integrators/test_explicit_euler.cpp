@@ -6,6 +6,8 @@
 #include <massspring/diagnostics/energy.hpp>
 #include <massspring/forces/gravitational_attraction.hpp>
 #include <massspring/forces/gravity.hpp>
+#include <massspring/integrators/backward_euler.hpp>
+#include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/integrators/forward_euler.hpp>
 #include <massspring/integrators/symplectic_euler.hpp>
 #include <massspring/scene/cloth.hpp>
@@ -175,4 +177,17 @@ TEST_CASE("Explicit Euler: refuses bad dt, step before precompute, a resized sys
                        "ForwardEuler: the system has 3 points, precompute() saw 2; call "
                        "precompute() again",
                        massspring::Error);
+}
+
+TEST_CASE("Every integrator steps a system with no points (nothing to do, not a crash)") {
+  const auto check = [](auto integrator) {
+    SystemS s(Points(0, 3), massspring::Edges(0, 2), 1.0, 1.0);
+    integrator.precompute(s, 0.1);
+    CHECK(integrator.step(s).ok());
+    CHECK(s.num_points() == 0);
+  };
+  check(massspring::ForwardEuler<SystemS>{});
+  check(massspring::SymplecticEuler<SystemS>{});
+  check(massspring::BackwardEuler<SystemS>{});
+  check(massspring::FastMassSpring<SystemS>{});
 }

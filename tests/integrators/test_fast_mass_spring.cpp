@@ -596,9 +596,9 @@ TEST_CASE("invalid options and time steps are refused") {
   using System = MassSpringSystem<double>;
   System s = chain<System>();
   FastMassSpring<System> solver;
-  CHECK_THROWS_WITH_AS(solver.step(s), "step: call precompute(system, dt) first", Error);
+  CHECK_THROWS_WITH_AS(solver.step(s), "FastMassSpring: step() before precompute()", Error);
   CHECK_THROWS_WITH_AS(solver.precompute(s, 0.0),
-                       "precompute: time step dt must be finite and > 0, got 0", Error);
+                       "FastMassSpring: dt must be finite and > 0, got 0", Error);
   CHECK_THROWS_WITH_AS(solver.precompute(s, -0.1), doctest::Contains("got -0.1"), Error);
   CHECK_THROWS_WITH_AS(solver.precompute(s, std::numeric_limits<double>::infinity()),
                        doctest::Contains("dt must be finite"), Error);

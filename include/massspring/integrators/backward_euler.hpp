@@ -98,6 +98,11 @@ class BackwardEuler {
                                   options.max_iterations));
     detail::require_number("BackwardEuler", "tolerance", double(options.tolerance), false);
     StepReport report;
+    if (system.num_points() == 0) {  // nothing moves; max over an empty residual is undefined
+      report.converged = true;
+      report.residual = 0;
+      return report;
+    }
     if (assembly_.stale(system)) {
       setup(system);
       report.refactorized = true;

@@ -158,7 +158,7 @@ class FastMassSpring {
   /// be factorised.
   void precompute(const System& system, Scalar dt) {
     if (!(std::isfinite(dt) && dt > 0))
-      throw Error(detail::message("precompute: time step dt must be finite and > 0, got ", dt));
+      throw Error(detail::message("FastMassSpring: dt must be finite and > 0, got ", dt));
     check_options();
     dt_ = dt;
     build(system);
@@ -167,7 +167,7 @@ class FastMassSpring {
   /// @brief Advances the system by one time step dt. Returns what happened; when the result is not
   /// finite, the report says so and the system keeps its previous state.
   StepReport step(System& system) {
-    if (!(dt_ > 0)) throw Error("step: call precompute(system, dt) first");
+    if (!(dt_ > 0)) throw Error("FastMassSpring: step() before precompute()");
     check_options();
     StepReport report;
     if (system.revision() != revision_ || system.num_points() != n_ || options.pins != pins_ ||
@@ -328,7 +328,7 @@ class FastMassSpring {
     q_ = Traits::from_triplets(nr_, nr_, t);
     std::vector<Triplet>().swap(t);
     if (!llt_.compute(q_))
-      throw Error(detail::message("precompute: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
+      throw Error(detail::message("FastMassSpring: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
                                   " is not numerically positive definite (dt = ", dt_,
                                   exact ? "" : detail::message(", penalty weight = ", weight_),
                                   ")"));
