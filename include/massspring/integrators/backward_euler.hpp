@@ -194,8 +194,11 @@ class BackwardEuler {
   bool solve(const System& system, bool newton) {
     v_ = system.velocities() + moved_ / dt_;
     assembly_.assemble(system, x_, v_, dt_, false);
-    bool ok = solver_.factorize(assembly_.matrix(), symmetric_);
-    if (newton && (!ok || solver_.path() == LinearSolverPath::Indefinite)) {
+    // Newton: a failed Cholesky means A is indefinite; its definite projection is cheaper and
+    // descends, where a pivoting fallback would give a direction that may not.
+    const bool projectable = newton && symmetric_;
+    bool ok = solver_.factorize(assembly_.matrix(), symmetric_, !projectable);
+    if (projectable && !ok) {
       assembly_.assemble(system, x_, v_, dt_, true);
       ok = solver_.factorize(assembly_.matrix(), symmetric_);
     }

@@ -6,8 +6,13 @@
 ///
 /// - Dense: Eigen::LLT; when it fails, Eigen::LDLT (symmetric indefinite, pivoting); for a
 ///   non-symmetric A, Eigen::PartialPivLU.
-/// - Sparse: Eigen::SimplicialLLT (AMD ordering, pattern analysed once); when it fails or A is not
-///   symmetric, Eigen::SparseLU (COLAMD ordering).
+/// - Sparse: Eigen::SimplicialLLT (AMD ordering, pattern analysed once); when it fails,
+///   Eigen::SimplicialLDLT on the same pattern (symmetric indefinite, no pivoting: accepted when no
+///   pivot of D is zero), then Eigen::SparseLU (COLAMD ordering), which is also the path for a
+///   non-symmetric A.
+///
+/// factorize(a, symmetric, fallback = false) stops after a failed Cholesky: Newton's method uses
+/// that to replace an indefinite A by its definite projection instead of paying for the fallback.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -25,10 +30,11 @@ namespace massspring {
 
 /// @brief Which factorisation the last factorize() used.
 enum class LinearSolverPath {
-  None,        ///< nothing factorised yet, or the factorisation failed
-  Cholesky,    ///< A was symmetric positive definite
-  Indefinite,  ///< Cholesky failed: the symmetric indefinite fallback (Dense LDLT, Sparse LU)
-  General,     ///< A was declared not symmetric: LU
+  None,          ///< nothing factorised yet, or the factorisation failed
+  Cholesky,      ///< A was symmetric positive definite
+  Indefinite,    ///< Cholesky failed: the symmetric indefinite fallback (Dense LDLT, Sparse LDLT)
+  IndefiniteLU,  ///< Sparse only: LDLT failed too (a zero pivot), so LU
+  General,       ///< A was declared not symmetric: LU
 };
 
 template <class Storage, class Scalar>
@@ -47,7 +53,7 @@ class LinearSolver<Dense, Scalar> {
     lu_ = Eigen::PartialPivLU<Matrix>(a.rows());
   }
   /// @brief Factorises A. @return false when no factorisation succeeded.
-  bool factorize(const Matrix& a, bool symmetric) {
+  bool factorize(const Matrix& a, bool symmetric, bool fallback = true) {
     path_ = LinearSolverPath::None;
     if (!symmetric) {
       lu_.compute(a);
@@ -60,6 +66,7 @@ class LinearSolver<Dense, Scalar> {
       path_ = LinearSolverPath::Cholesky;
       return true;
     }
+    if (!fallback) return false;
     ldlt_.compute(a);
     if (ldlt_.info() == Eigen::Success && ldlt_.vectorD().array().abs().minCoeff() > 0) {
       path_ = LinearSolverPath::Indefinite;
@@ -78,6 +85,7 @@ class LinearSolver<Dense, Scalar> {
         x = ldlt_.solve(b);
         break;
       case LinearSolverPath::General:
+      case LinearSolverPath::IndefiniteLU:
         x = lu_.solve(b);
         break;
       case LinearSolverPath::None:
@@ -103,15 +111,26 @@ class LinearSolver<Sparse, Scalar> {
   /// @brief Symbolic analysis of A's pattern; call again when the pattern changes.
   void analyze(const Matrix& a) {
     llt_.analyzePattern(a);
+    ldlt_analyzed_ = false;
     lu_analyzed_ = false;
   }
   /// @brief Factorises A (same pattern as analysed). @return false when nothing succeeded.
-  bool factorize(const Matrix& a, bool symmetric) {
+  bool factorize(const Matrix& a, bool symmetric, bool fallback = true) {
     path_ = LinearSolverPath::None;
     if (symmetric) {
       llt_.factorize(a);
       if (llt_.info() == Eigen::Success) {
         path_ = LinearSolverPath::Cholesky;
+        return true;
+      }
+      if (!fallback) return false;
+      if (!ldlt_analyzed_) {
+        ldlt_.analyzePattern(a);
+        ldlt_analyzed_ = true;
+      }
+      ldlt_.factorize(a);
+      if (ldlt_.info() == Eigen::Success && ldlt_.vectorD().array().abs().minCoeff() > 0) {
+        path_ = LinearSolverPath::Indefinite;
         return true;
       }
     }
@@ -121,7 +140,7 @@ class LinearSolver<Sparse, Scalar> {
     }
     lu_.factorize(a);
     if (lu_.info() != Eigen::Success) return false;
-    path_ = symmetric ? LinearSolverPath::Indefinite : LinearSolverPath::General;
+    path_ = symmetric ? LinearSolverPath::IndefiniteLU : LinearSolverPath::General;
     return true;
   }
   /// @brief x = A^-1 b after a successful factorize().
@@ -132,6 +151,9 @@ class LinearSolver<Sparse, Scalar> {
         x = llt_.solve(b);
         break;
       case LinearSolverPath::Indefinite:
+        x = ldlt_.solve(b);
+        break;
+      case LinearSolverPath::IndefiniteLU:
       case LinearSolverPath::General:
         x = lu_.solve(b);
         break;
@@ -144,8 +166,9 @@ class LinearSolver<Sparse, Scalar> {
 
  private:
   Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> llt_;
+  Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
   Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu_;
-  bool lu_analyzed_ = false;
+  bool ldlt_analyzed_ = false, lu_analyzed_ = false;
   LinearSolverPath path_ = LinearSolverPath::None;
 };
 
