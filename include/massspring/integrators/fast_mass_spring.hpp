@@ -328,10 +328,10 @@ class FastMassSpring {
     q_ = Traits::from_triplets(nr_, nr_, t);
     std::vector<Triplet>().swap(t);
     if (!llt_.compute(q_))
-      throw Error(detail::message("FastMassSpring: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
-                                  " is not numerically positive definite (dt = ", dt_,
-                                  exact ? "" : detail::message(", penalty weight = ", weight_),
-                                  ")"));
+      throw Error(
+          detail::message("FastMassSpring: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
+                          " is not numerically positive definite (dt = ", dt_,
+                          exact ? "" : detail::message(", penalty weight = ", weight_), ")"));
 
     // Iterate rows: free points in the factor's order, then (exact pins) the pinned points.
     const Eigen::VectorXi& perm = llt_.permutation();
