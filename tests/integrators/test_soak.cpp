@@ -150,9 +150,10 @@ TEST_SUITE("soak" * doctest::skip()) {
 
   // Reduced to 400 frames (13 s simulated): BackwardEuler on this cloth (12,288 unknowns)
   // factorises a sparse 3n x 3n matrix every frame, and the cloth's compressed springs make it
-  // indefinite, so Linearized falls back to SparseLU: 0.16 to 0.37 s of CPU per frame in Release
-  // (1,000 frames measured 370 s), i.e. about an hour for 10,000 frames (Newton, with its definite
-  // projection and Cholesky, measured slower still). 400 frames take about 1 to 2.5 minutes.
+  // indefinite, so Linearized falls back to SparseLU: 0.16 s of CPU per frame with Eigen's
+  // assertions off, 0.39 s in this test build (assertions on), i.e. about an hour for 10,000
+  // frames. Newton (definite projection, Cholesky, several solves a frame) measured slower still.
+  // 400 frames measured 156 s of CPU in Release.
   TEST_CASE("soak: BackwardEuler Linearized, 64x64 cloth, 400 frames at dt = 1/30") {
     System s = soak_cloth(true);
     massspring::BackwardEuler<System> be;
