@@ -37,6 +37,30 @@ enum class LinearSolverPath {
   General,       ///< A was declared not symmetric: LU
 };
 
+namespace detail {
+/// @brief x = A^-1 b with the factorisation `path` names (NaN when none succeeded): the one
+/// dispatch both storages share.
+template <class Llt, class Ldlt, class Lu, class B, class X>
+void solve_on_path(LinearSolverPath path, const Llt& llt, const Ldlt& ldlt, const Lu& lu,
+                   const B& b, X& x) {
+  switch (path) {
+    case LinearSolverPath::Cholesky:
+      x = llt.solve(b);
+      break;
+    case LinearSolverPath::Indefinite:
+      x = ldlt.solve(b);
+      break;
+    case LinearSolverPath::IndefiniteLU:
+    case LinearSolverPath::General:
+      x = lu.solve(b);
+      break;
+    case LinearSolverPath::None:
+      x.setConstant(std::numeric_limits<typename X::Scalar>::quiet_NaN());
+      break;
+  }
+}
+}  // namespace detail
+
 template <class Storage, class Scalar>
 class LinearSolver;
 
@@ -77,21 +101,7 @@ class LinearSolver<Dense, Scalar> {
   /// @brief x = A^-1 b after a successful factorize().
   template <class B, class X>
   void solve(const B& b, X& x) const {
-    switch (path_) {
-      case LinearSolverPath::Cholesky:
-        x = llt_.solve(b);
-        break;
-      case LinearSolverPath::Indefinite:
-        x = ldlt_.solve(b);
-        break;
-      case LinearSolverPath::General:
-      case LinearSolverPath::IndefiniteLU:
-        x = lu_.solve(b);
-        break;
-      case LinearSolverPath::None:
-        x.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
-        break;
-    }
+    detail::solve_on_path(path_, llt_, ldlt_, lu_, b, x);
   }
   [[nodiscard]] LinearSolverPath path() const { return path_; }
 
@@ -145,22 +155,8 @@ class LinearSolver<Sparse, Scalar> {
   }
   /// @brief x = A^-1 b after a successful factorize().
   template <class B, class X>
-  void solve(const B& b, X& x) {
-    switch (path_) {
-      case LinearSolverPath::Cholesky:
-        x = llt_.solve(b);
-        break;
-      case LinearSolverPath::Indefinite:
-        x = ldlt_.solve(b);
-        break;
-      case LinearSolverPath::IndefiniteLU:
-      case LinearSolverPath::General:
-        x = lu_.solve(b);
-        break;
-      case LinearSolverPath::None:
-        x.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
-        break;
-    }
+  void solve(const B& b, X& x) const {
+    detail::solve_on_path(path_, llt_, ldlt_, lu_, b, x);
   }
   [[nodiscard]] LinearSolverPath path() const { return path_; }
 
