@@ -78,6 +78,7 @@ struct Config {
   std::string csv;  // trajectory file
   int every = 1;
   bool quiet = false;
+  double guard_growth = 100;  // DivergenceGuard growth; 0: no energy check
 };
 
 // "cloth:60x50" -> the generator's scene.
@@ -237,7 +238,12 @@ int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& w
   ms.reserve(std::size_t(std::min(s.steps, 1 << 20)));
   long long iterations = 0;
   int diverged_at = -1;
+  bool blew_up = false;
   int interrupted_at = -1;
+  // The energy check (off with --guard-growth 0): a step whose total energy passes
+  // E(0) + growth x scale is undone and stops the run, like a non-finite one.
+  std::optional<massspring::DivergenceGuard<System>> guard;
+  if (c.guard_growth > 0) guard.emplace(system, massspring::DivergenceOptions{c.guard_growth});
   for (int step = 1; step <= s.steps; ++step) {
     if (g_interrupted) {  // SIGINT or SIGTERM since the last step: keep its frame, stop
       interrupted_at = step - 1;
@@ -247,12 +253,13 @@ int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& w
     if (c.shrink > 0)  // free: rest lengths do not change any matrix
       system.set_rest_lengths(rest * Scalar(std::exp(-c.shrink * s.dt * (step - 1))));
     const auto start = std::chrono::steady_clock::now();
-    const massspring::StepReport report = solver.step(system);
+    const massspring::StepReport report = guard ? guard->step(solver, system) : solver.step(system);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                      .count());
     iterations += report.iterations;
     if (!report.ok()) {
       diverged_at = step;
+      blew_up = report.blew_up;
       break;
     }
     write_frame(step);
@@ -272,6 +279,14 @@ int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& w
                 percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
   else
     std::printf("%.3f\n", percentile(ms, 0.5));
+  if (diverged_at > 0 && blew_up) {
+    std::fprintf(stderr,
+                 "massspring-simulate: step %d: the total energy passed the divergence limit "
+                 "(%.6g J: the initial energy + %g x the scale %.6g J); stopped with the last good "
+                 "state (steps 0..%d written)\n",
+                 diverged_at, guard->limit(), c.guard_growth, guard->scale(), diverged_at - 1);
+    return 2;
+  }
   if (diverged_at > 0) {
     std::fprintf(stderr,
                  "massspring-simulate: step %d: the step produced a non-finite state; stopped "
@@ -297,31 +312,24 @@ int run(const Config& c, Setup<System>& s) {
     gravity(k) = Scalar(c.gravity[std::size_t(k)]);
     force(k) = Scalar(c.force[std::size_t(k)]);
   }
+  // Every integrator reads every force from the system: JSON and generated scenes get the
+  // --gravity and --force options as force terms (an XML scene has its own). FastMassSpring
+  // treats both exactly, and the divergence guard sees their energy.
+  if (!s.from_xml) {
+    if (!gravity.isZero()) system.add_force(massspring::Gravity<Scalar>(gravity));
+    if (!force.isZero()) system.add_force(massspring::ConstantForce<Scalar>(force));
+  }
   if (s.integrator == "fast-mass-spring") {
-    // FastMassSpring applies the system's force terms (an XML scene's gravity, attraction and
-    // drag) and adds its options' gravity and constant force (the JSON scenes' --gravity/--force).
-    if (s.from_xml) {
-      gravity.setZero();
-      force.setZero();
-    }
     massspring::FastMassSpring<System> solver;
     solver.options.iterations = c.iterations;
     solver.options.tolerance = Scalar(c.tolerance);
     solver.options.pins =
         c.pins == "penalty" ? massspring::PinMode::Penalty : massspring::PinMode::Exact;
     solver.options.penalty_weight = Scalar(c.penalty_weight);
-    solver.options.gravity = gravity;
-    solver.options.external_force = force;
     if (std::is_same_v<Scalar, float> && solver.options.pins == massspring::PinMode::Penalty)
       std::cerr << "massspring-simulate: warning: penalty pins (w = " << c.penalty_weight
                 << ") in float lose the rest of Q to rounding; use --pins exact\n";
     return loop(c, s, solver, "fast-mass-spring (" + c.pins + " pins)");
-  }
-  // The other integrators read every force from the system: JSON and generated scenes get the
-  // --gravity and --force options as force terms (an XML scene has its own).
-  if (!s.from_xml) {
-    if (!gravity.isZero()) system.add_force(massspring::Gravity<Scalar>(gravity));
-    if (!force.isZero()) system.add_force(massspring::ConstantForce<Scalar>(force));
   }
   if (s.integrator == "forward-euler") {
     massspring::ForwardEuler<System> solver;
@@ -428,6 +436,10 @@ int main(int argc, char** argv) {
   app.add_option("--every", c.every, "Write every Nth frame (and the last)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--guard-growth", c.guard_growth,
+                 "Stop when the total energy passes E(0) + G x scale (DivergenceGuard; the step "
+                 "times then include its energy check); 0 turns the check off")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--quiet", c.quiet, "Print only the median milliseconds per frame");
   CLI11_PARSE(app, argc, argv);
   c.frames_given = frames->count() > 0;

@@ -3,7 +3,11 @@
 /// @brief The core of massspring: systems, storage, integrators, scene descriptions and generators.
 /// Needs Eigen only. Scene files (JSON, OBJ) are in massspring/io.hpp.
 
+#include "massspring/diagnostics/accuracy.hpp"
+#include "massspring/diagnostics/divergence_guard.hpp"
 #include "massspring/diagnostics/energy.hpp"
+#include "massspring/diagnostics/reference_solution.hpp"
+#include "massspring/diagnostics/stable_time_step.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/forces/force_term.hpp"
@@ -14,6 +18,7 @@
 #include "massspring/integrators/backward_euler.hpp"
 #include "massspring/integrators/fast_mass_spring.hpp"
 #include "massspring/integrators/forward_euler.hpp"
+#include "massspring/integrators/rk4.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/integrators/symplectic_euler.hpp"
 #include "massspring/scene/chain.hpp"

@@ -6,8 +6,9 @@
 
 namespace massspring {
 
-/// @brief The outcome of one step. A step that fails (`finite == false`) leaves the system's
-/// positions and velocities exactly as they were before the step.
+/// @brief The outcome of one step. A step that fails (`ok() == false`: a non-finite value, or an
+/// energy blow-up caught by a DivergenceGuard) leaves the system's positions and velocities
+/// exactly as they were before the step.
 struct StepReport {
   /// @brief Solver iterations done in this step (local-global: global solves).
   int iterations = 0;
@@ -28,9 +29,12 @@ struct StepReport {
   bool finite = true;
   /// @brief True when this step had to factorise again because the model changed since the last.
   bool refactorized = false;
+  /// @brief True when a DivergenceGuard found the total energy after this step beyond its limit
+  /// (an energy blow-up). The guard then restored the state from before the step.
+  bool blew_up = false;
 
-  /// @brief A step succeeded when its result is finite.
-  [[nodiscard]] bool ok() const { return finite; }
+  /// @brief A step succeeded when its result is finite and its energy did not blow up.
+  [[nodiscard]] bool ok() const { return finite && !blew_up; }
 };
 
 }  // namespace massspring
