@@ -112,9 +112,9 @@ TEST_CASE("stable_time_step: one pinned spring: omega_max = sqrt(k/m), Symplecti
   CHECK(b.omega_max == doctest::Approx(w).epsilon(1e-14));
   CHECK(b.damping_max == 0);
   CHECK(b.damping_min == 0);
-  const double h = massspring::stable_time_step(s, ExplicitMethod::SymplecticEuler);
+  const double h = massspring::stability_limit(s, ExplicitMethod::SymplecticEuler);
   CHECK(h == doctest::Approx(2 / w).epsilon(1e-14));
-  CHECK(massspring::stable_time_step(s) == h);  // the default method
+  CHECK(massspring::stability_limit(s) == h);  // the default method
 
   // The bound is the true limit here. Symplectic Euler conserves the quadratic form
   // Q = w^2 u^2 + v^2 - h w^2 u v, so from (u0, 0) its |u| never exceeds u0 / sqrt(1 - (h w/2)^2)
@@ -127,10 +127,25 @@ TEST_CASE("stable_time_step: one pinned spring: omega_max = sqrt(k/m), Symplecti
   CHECK(max_amplitude<massspring::SymplecticEuler>(s, 1.02 * h, 20000, 1.0) > 1.0);
 }
 
+TEST_CASE("stable_time_step: safety x stability_limit, 0.5 by default; safety in (0, 1]") {
+  const auto s = massspring::test::oscillator<SystemS>(0.5, 8, 1.0, 0.1);
+  for (const auto method :
+       {ExplicitMethod::SymplecticEuler, ExplicitMethod::RK4, ExplicitMethod::ForwardEuler}) {
+    const double limit = massspring::stability_limit(s, method);
+    CHECK(massspring::stable_time_step(s, method) == 0.5 * limit);
+    CHECK(massspring::stable_time_step(s, method, 0.8) == 0.8 * limit);
+    CHECK(massspring::stable_time_step(s, method, 1.0) == limit);
+  }
+  CHECK(massspring::default_stability_safety == 0.5);
+  for (const double bad : {0.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN()})
+    CHECK_THROWS_WITH_AS(massspring::stable_time_step(s, ExplicitMethod::SymplecticEuler, bad),
+                         doctest::Contains("safety must be in (0, 1]"), massspring::Error);
+}
+
 TEST_CASE("stable_time_step: RK4 at 2.6/omega decays; its true limit 2 sqrt 2 is 9% further") {
   const double m = 0.5, k = 8, w = std::sqrt(k / m);
   const auto s = massspring::test::oscillator<SystemS>(m, k, 1.0, 0.1);
-  const double h = massspring::stable_time_step(s, ExplicitMethod::RK4);
+  const double h = massspring::stability_limit(s, ExplicitMethod::RK4);
   CHECK(h == doctest::Approx(2.6 / w).epsilon(1e-14));
   // On the undamped oscillator, RK4 scales the energy norm sqrt(w^2 u^2 + v^2) by exactly
   // |R(i h w)| per step, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24: 0.579 at h w = 2.6.
@@ -166,7 +181,7 @@ TEST_CASE("stable_time_step: RK4 at 2.6/omega decays; its true limit 2 sqrt 2 is
 
 TEST_CASE("stable_time_step: ForwardEuler: 0 without drag, min(c/omega^2, 2/c) with it") {
   const auto plain = massspring::test::oscillator<SystemS>(2, 2, 1.0, 0.1);
-  CHECK(massspring::stable_time_step(plain, ExplicitMethod::ForwardEuler) == 0);
+  CHECK(massspring::stability_limit(plain, ExplicitMethod::ForwardEuler) == 0);
 
   // m = 2, k = 2 (omega = 1), beta = 0.4: c = beta/m = 0.2, c/omega^2 = 0.2 < 2/c = 10.
   auto under = massspring::test::oscillator<SystemS>(2, 2, 1.0, 0.1);
@@ -174,12 +189,12 @@ TEST_CASE("stable_time_step: ForwardEuler: 0 without drag, min(c/omega^2, 2/c) w
   const auto b = massspring::frequency_bounds(under);
   CHECK(b.damping_max == doctest::Approx(0.2).epsilon(1e-15));
   CHECK(b.damping_min == doctest::Approx(0.2).epsilon(1e-15));
-  const double h = massspring::stable_time_step(under, ExplicitMethod::ForwardEuler);
+  const double h = massspring::stability_limit(under, ExplicitMethod::ForwardEuler);
   CHECK(h == doctest::Approx(0.2).epsilon(1e-14));
   // With drag, the SymplecticEuler and RK4 bounds use c too (closed forms of the header).
-  CHECK(massspring::stable_time_step(under, ExplicitMethod::SymplecticEuler) ==
+  CHECK(massspring::stability_limit(under, ExplicitMethod::SymplecticEuler) ==
         doctest::Approx(4 / (0.2 + std::sqrt(0.04 + 4))).epsilon(1e-14));
-  CHECK(massspring::stable_time_step(under, ExplicitMethod::RK4) ==
+  CHECK(massspring::stability_limit(under, ExplicitMethod::RK4) ==
         doctest::Approx(2.6 / (0.1 + std::sqrt(0.01 + 1))).epsilon(1e-14));
   // Forward Euler on u'' = -omega^2 u - c u': its eigenvalues have |lambda|^2 = 1 - h c +
   // h^2 omega^2, below 1 exactly when h < c / omega^2. At 0.98 h it decays (|lambda| = 0.99961:
@@ -201,7 +216,7 @@ TEST_CASE("stable_time_step: ForwardEuler: 0 without drag, min(c/omega^2, 2/c) w
   // Overdamped, m = 1, k = 1, beta = 4: c/omega^2 = 4 > 2/c = 0.5.
   auto over = massspring::test::oscillator<SystemS>(1, 1, 1.0, 0.1);
   over.add_force(massspring::LinearDrag<double>(4));
-  CHECK(massspring::stable_time_step(over, ExplicitMethod::ForwardEuler) ==
+  CHECK(massspring::stability_limit(over, ExplicitMethod::ForwardEuler) ==
         doctest::Approx(0.5).epsilon(1e-14));
 }
 
@@ -277,7 +292,7 @@ TEST_CASE("stable_time_step: SymplecticEuler and RK4 at the bound stay bounded o
         const double e0 = massspring::total_energy(s);
         const ExplicitMethod which =
             method == 0 ? ExplicitMethod::SymplecticEuler : ExplicitMethod::RK4;
-        const double h = factor * massspring::stable_time_step(s, which);
+        const double h = factor * massspring::stability_limit(s, which);
         const double inf = std::numeric_limits<double>::infinity();
         double first = -inf, second = -inf;  // max (E - E0)/S over steps 0-999, 1000-1999
         int steps = 0;
@@ -326,20 +341,20 @@ TEST_CASE("stable_time_step: nothing to limit h gives +infinity; a NaN state thr
   SystemS empty(x, massspring::Edges(0, 2), 1.0, 1.0);
   for (const auto method :
        {ExplicitMethod::ForwardEuler, ExplicitMethod::SymplecticEuler, ExplicitMethod::RK4})
-    CHECK(massspring::stable_time_step(empty, method) == inf);
+    CHECK(massspring::stability_limit(empty, method) == inf);
   // Gravity has no stiffness and no damping either.
   empty.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.81, 0)));
-  CHECK(massspring::stable_time_step(empty, ExplicitMethod::SymplecticEuler) == inf);
+  CHECK(massspring::stability_limit(empty, ExplicitMethod::SymplecticEuler) == inf);
   // No points at all.
   SystemS none(Points(0, 3), massspring::Edges(0, 2), 1.0, 1.0);
-  CHECK(massspring::stable_time_step(none, ExplicitMethod::RK4) == inf);
+  CHECK(massspring::stability_limit(none, ExplicitMethod::RK4) == inf);
 
   auto s = massspring::test::oscillator<SystemS>(1, 1, 1.0, 0.1);
   s.positions()(1, 0) = std::numeric_limits<double>::quiet_NaN();
   for (const auto method :
        {ExplicitMethod::ForwardEuler, ExplicitMethod::SymplecticEuler, ExplicitMethod::RK4})
-    CHECK_THROWS_AS(massspring::stable_time_step(s, method), massspring::Error);
+    CHECK_THROWS_AS(massspring::stability_limit(s, method), massspring::Error);
   auto c = massspring::test::perturbed_cloth<SystemS>();
   c.positions()(7, 2) = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THROWS_AS(massspring::stable_time_step(c), massspring::Error);
+  CHECK_THROWS_AS(massspring::stability_limit(c), massspring::Error);
 }

@@ -27,8 +27,8 @@ struct ReferenceOptions {
   /// @brief Stop when halving the step changes the end positions by less than this, as a
   /// trajectory error (RMS distance over the bounding-box diagonal). Finite, > 0; default 1e-9.
   double tolerance = 1e-9;
-  /// @brief The first step [s]; 0 (default) takes half of stable_time_step(system, RK4), at most
-  /// end_time / 8.
+  /// @brief The first step [s]; 0 (default) takes stable_time_step(system, RK4) (half the limit),
+  /// at most end_time / 8.
   double initial_dt = 0;
   /// @brief At most this many halvings (>= 1; default 14); past them reference_solution() throws.
   int max_halvings = 14;
@@ -202,7 +202,7 @@ ReferenceSolution reference_solution(const System& system, double end_time,
   }
 
   double h = options.initial_dt;
-  if (h == 0) h = std::min(0.5 * stable_time_step(system, ExplicitMethod::RK4), end_time / 8);
+  if (h == 0) h = std::min(stable_time_step(system, ExplicitMethod::RK4), end_time / 8);
   long steps = std::max(1L, long(std::ceil(end_time / h)));
   ReferenceSolution r;
   r.diagonal = bounding_box_diagonal(system.positions());
