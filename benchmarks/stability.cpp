@@ -12,8 +12,8 @@
 // Integrators: ForwardEuler, SymplecticEuler, RK4, BackwardEuler (Linearized and Newton, default
 // options), FastMassSpring (local-global, default options: 50 iterations, exact pins).
 // Time steps: 1e-4, 1e-3, 1e-2, 1/30 s; and, per (scene, k) and explicit method, 1, 0.75 and 0.5
-// times stable_time_step(system, method) (ForwardEuler is skipped there: without damping its
-// bound is 0).
+// times stability_limit(system, method), the edge of the linearised stability at the initial state
+// (ForwardEuler is skipped there: without damping its limit is 0).
 //
 // Outcome of a run (see classify()):
 //   diverged  a step was not finite, or its total energy passed the guard's limit E(0) + 100 S
@@ -25,9 +25,15 @@
 //             The exact motion keeps E(t) = E(0): the gain is the integrator's doing.
 //   stable    otherwise (energy kept, or lost: implicit methods dissipate).
 //
-// The bound is stable_time_step(system, method) at the initial state. "At or below the bound" (the
-// summary line and the exit code) covers the runs at the three factors and every grid cell whose
-// dt is at or below it.
+// The library's stable_time_step(system, method) is 0.5 x stability_limit (its default safety).
+// "At or below stable_time_step" (the summary line and the exit code) covers the runs at 0.5 x the
+// limit and every grid cell whose dt is at or below it; the runs at 1 and 0.75 x the limit show
+// how much margin the factor leaves.
+//
+// Deformation, per run over its accepted steps: stretch_min / stretch_max, the extreme spring
+// lengths l / l0; limit_ratio_min, the smallest stability_limit(system, SymplecticEuler) of the
+// visited states (about 200 sampled per run) over that at the initial state. The wall time includes
+// this bookkeeping.
 //
 // Output in DIR: results.csv (one row per run), traces.csv (per run, the total energy averaged
 // over 50 equal blocks of the planned run), meta.csv (settings and the total wall time).
@@ -56,8 +62,9 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kGravity = 9.81;                     // m/s^2
 constexpr int kBlocks = 50;                           // energy trace resolution per run
+constexpr long kLimitSamples = 200;                   // stability_limit samples per run
 constexpr double kGrowth = 0.05;                      // "growing": gain above 5% of W
-constexpr double kBoundFactors[] = {1.0, 0.75, 0.5};  // runs at factor x stable_time_step
+constexpr double kBoundFactors[] = {1.0, 0.75, 0.5};  // runs at factor x stability_limit
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 enum class Method {
@@ -171,9 +178,31 @@ struct Run {
   double wall = 0;
   long unconverged = 0;  // BackwardEuler-Newton: steps that stopped at max_iterations
   long indefinite = 0;   // BackwardEuler: steps whose solve was not a Cholesky one
+  // Deformation over the accepted steps: the extreme spring lengths l / l0 (every step), and the
+  // smallest stability_limit (symplectic Euler) of the states visited over that at the initial
+  // state (sampled at about kLimitSamples evenly spaced steps).
+  double stretch_min = kNaN, stretch_max = kNaN, limit_ratio_min = kNaN;
   std::string outcome;
   std::string rule;  // what decided the outcome
 };
+
+// Updates run.stretch_min/max from the current spring lengths and, when limit0 is a number,
+// run.limit_ratio_min from stability_limit at the current state.
+void track_deformation(const System& system, double limit0, Run& run) {
+  const auto& x = system.positions();
+  const auto& springs = system.springs();
+  const auto& rest = system.rest_lengths();
+  for (int e = 0; e < system.num_springs(); ++e) {
+    const double r = (x.row(springs(e, 0)) - x.row(springs(e, 1))).norm() / rest(e);
+    run.stretch_min = std::isnan(run.stretch_min) ? r : std::min(run.stretch_min, r);
+    run.stretch_max = std::isnan(run.stretch_max) ? r : std::max(run.stretch_max, r);
+  }
+  if (std::isnan(limit0) || !std::isfinite(limit0) || limit0 <= 0) return;
+  const double ratio =
+      massspring::stability_limit(system, massspring::ExplicitMethod::SymplecticEuler) / limit0;
+  run.limit_ratio_min =
+      std::isnan(run.limit_ratio_min) ? ratio : std::min(run.limit_ratio_min, ratio);
+}
 
 template <class Integrator>
 void simulate(System system, Integrator& integrator, double dt, long steps, Run& run) {
@@ -193,6 +222,9 @@ void simulate(System system, Integrator& integrator, double dt, long steps, Run&
     run.e0 = run.e_max = run.e_end = guard.initial_energy();
     run.scale = guard.scale();
     run.ke_max = double(massspring::kinetic_energy(system));
+    const double limit0 =
+        massspring::stability_limit(system, massspring::ExplicitMethod::SymplecticEuler);
+    const long limit_every = std::max(1L, steps / kLimitSamples);
     for (long s = 1; s <= steps; ++s) {
       const massspring::StepReport r = guard.step(integrator, system);
       if constexpr (std::is_same_v<Integrator, massspring::BackwardEuler<System>>) {
@@ -213,6 +245,7 @@ void simulate(System system, Integrator& integrator, double dt, long steps, Run&
       run.e_end = e;
       run.e_max = std::max(run.e_max, e);
       run.ke_max = std::max(run.ke_max, double(massspring::kinetic_energy(system)));
+      track_deformation(system, s % limit_every == 0 ? limit0 : kNaN, run);
       const auto b = std::size_t((s - 1) * kBlocks / steps);
       sum[b] += e;
       ++count[b];
@@ -347,6 +380,7 @@ int main(int argc, char** argv) {
   results << "scene,points,springs,k,integrator,kind,factor,dt,dt_label,bound_dt,"
              "at_or_below_bound,steps_planned,steps_done,outcome,rule,fail_step,fail_time,E0,"
              "guard_scale,W,E_end,E_tail,E_max,KE_max,gain,unconverged_steps,indefinite_solves,"
+             "stretch_min,stretch_max,limit_ratio_min,"
              "wall_s\n";
   traces << "run,block,t_mid,energy\n";
 
@@ -360,8 +394,8 @@ int main(int argc, char** argv) {
           total += double(steps_for(end_time, dt)) * scene.points() * cost_weight(m);
         if (is_explicit(m) && m != Method::ForwardEuler)
           for (const double f : kBoundFactors)
-            total += double(steps_for(
-                         end_time, f * massspring::stable_time_step(proto, explicit_method(m)))) *
+            total += double(steps_for(end_time,
+                                      f * massspring::stability_limit(proto, explicit_method(m)))) *
                      scene.points() * cost_weight(m);
       }
     }
@@ -374,7 +408,9 @@ int main(int argc, char** argv) {
   int skipped = 0;
   auto record = [&](const SceneSpec& scene, const System& proto, double k, Method m,
                     const char* kind, double factor, double dt, double bound, const Run& run) {
-    const bool below = is_explicit(m) && bound > 0 && dt > 0 && dt <= bound;
+    // "At or below stable_time_step": dt <= safety x the limit (0.5 by default).
+    const double stable = massspring::default_stability_safety * bound;
+    const bool below = is_explicit(m) && bound > 0 && dt > 0 && dt <= stable * (1 + 1e-12);
     const bool at_bound = std::string(kind) == "bound";
     results << scene.name << ',' << proto.num_points() << ',' << proto.num_springs() << ','
             << num(k) << ',' << name(m) << ',' << kind << ',' << num(factor) << ',' << num(dt)
@@ -385,7 +421,9 @@ int main(int argc, char** argv) {
             << num(run.fail_time) << ',' << num(run.e0) << ',' << num(run.scale) << ','
             << num(run.w) << ',' << num(run.e_end) << ',' << num(run.e_tail) << ','
             << num(run.e_max) << ',' << num(run.ke_max) << ',' << num(run.gain) << ','
-            << run.unconverged << ',' << run.indefinite << ',' << num(run.wall) << '\n';
+            << run.unconverged << ',' << run.indefinite << ',' << num(run.stretch_min) << ','
+            << num(run.stretch_max) << ',' << num(run.limit_ratio_min) << ',' << num(run.wall)
+            << '\n';
     for (int b = 0; b < kBlocks; ++b)
       traces << run_id << ',' << b << ',' << num((b + 0.5) * double(run.planned) * dt / kBlocks)
              << ',' << num(run.blocks[std::size_t(b)]) << '\n';
@@ -396,7 +434,7 @@ int main(int argc, char** argv) {
       ++below_stable;
     } else {
       char buf[320];
-      std::snprintf(buf, sizeof buf, "%s k=%g %s dt=%.6g (%.3g x the bound %.6g): %s (%s)",
+      std::snprintf(buf, sizeof buf, "%s k=%g %s dt=%.6g (%.3g x the limit %.6g): %s (%s)",
                     scene.name.c_str(), k, name(m), dt, dt / bound, bound, run.outcome.c_str(),
                     run.rule.c_str());
       below_failures.push_back(buf);
@@ -408,7 +446,7 @@ int main(int argc, char** argv) {
       const System proto = make_scene(scene, k);
       for (const Method m : kMethods) {
         const double bound =
-            is_explicit(m) ? massspring::stable_time_step(proto, explicit_method(m)) : kNaN;
+            is_explicit(m) ? massspring::stability_limit(proto, explicit_method(m)) : kNaN;
         for (const double dt : dts) {
           const long steps = steps_for(end_time, dt);
           const Run run = run_method(m, proto, dt, steps);
@@ -424,7 +462,7 @@ int main(int argc, char** argv) {
             ++skipped;
             Run run;
             run.outcome = "skipped";
-            run.rule = "stable_time_step = 0: no stable step without damping";
+            run.rule = "stability_limit = 0: no stable step without damping";
             record(scene, proto, k, m, "bound", factor, 0.0, bound, run);
             continue;
           }
@@ -433,7 +471,7 @@ int main(int argc, char** argv) {
           const Run run = run_method(m, proto, dt, steps);
           record(scene, proto, k, m, "bound", factor, dt, bound, run);
           char label[200];
-          std::snprintf(label, sizeof label, "%s k=%g %s at %g x the bound (dt=%.3g): %s",
+          std::snprintf(label, sizeof label, "%s k=%g %s at %g x the limit (dt=%.3g): %s",
                         scene.name.c_str(), k, name(m), factor, dt, run.outcome.c_str());
           progress.advance(double(steps) * scene.points() * cost_weight(m), label);
         }
@@ -456,12 +494,13 @@ int main(int argc, char** argv) {
   std::printf("stability: %d runs in %.1f s (%s mode, %g simulated seconds each); results in %s\n",
               run_id, wall, quick ? "quick" : "full", end_time, out.c_str());
   std::printf(
-      "ForwardEuler at the bound: skipped %d times (stable_time_step = 0: no stable step "
+      "ForwardEuler at the limit: skipped %d times (stability_limit = 0: no stable step "
       "without damping)\n",
       skipped);
   for (const auto& f : below_failures)
-    std::printf("not stable at or below the bound: %s\n", f.c_str());
-  std::printf("explicit runs at or below stable_time_step: %ld, all stable: %s\n", below_runs,
-              below_runs == below_stable ? "yes" : "no");
+    std::printf("not stable at or below stable_time_step: %s\n", f.c_str());
+  std::printf(
+      "explicit runs at or below stable_time_step (%g x stability_limit): %ld, all stable: %s\n",
+      massspring::default_stability_safety, below_runs, below_runs == below_stable ? "yes" : "no");
   return below_runs == below_stable ? 0 : 1;
 }
