@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <massspring/diagnostics/stable_time_step.hpp>
 #include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/backward_euler.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>
@@ -61,14 +62,6 @@ System make_cloth_system(bool gravity_term, int n) {
   s.set_positions(x);
   if (gravity_term) s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
   return s;
-}
-
-/// dt < 2 / omega_max with omega_max^2 <= max_i sum_{e at i} 2 k_e / m_i (DESIGN.md).
-double explicit_limit(const System& s) {
-  Eigen::VectorXd sum = Eigen::VectorXd::Zero(s.num_points());
-  for (int e = 0; e < s.num_springs(); ++e)
-    for (int end = 0; end < 2; ++end) sum(s.springs()(e, end)) += 2 * s.stiffness()(e);
-  return 2 / std::sqrt((sum.array() / s.masses().array()).maxCoeff());
 }
 
 /// Steps kFrames frames; every step must succeed. Returns the hash of the final state.
@@ -146,7 +139,7 @@ TEST_CASE("FastMassSpring with Chebyshev and Anderson acceleration is determinis
 }
 
 TEST_CASE("SymplecticEuler is deterministic: 100 frames of a 24x24 cloth hash the same") {
-  const double dt = 0.5 * explicit_limit(make_cloth_system(true, 24));
+  const double dt = massspring::stable_time_step(make_cloth_system(true, 24));
   check_deterministic<massspring::SymplecticEuler<System>>(
       "SymplecticEuler", true, 24, dt, [](massspring::SymplecticEuler<System>&) {});
 }

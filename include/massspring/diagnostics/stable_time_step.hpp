@@ -14,6 +14,7 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/forces/force_term.hpp"
+#include "massspring/system/detail/validate.hpp"
 
 namespace massspring {
 
