@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Regenerates everything issue 4 put in docs/: run time against error (docs/benchmarks.md,
+# docs/images/pareto_*.png; scripts/pareto.sh) and the stability stress suite (docs/stability.md,
+# docs/images/stability_*.png; scripts/stability.sh). About 17 minutes on 2 cores (6 + 11), plus
+# 15 s the first time for the RK4 references cached in out/reference/.
+#
+#   scripts/accuracy.sh
+#
+# Progress (done/total, elapsed, ETA) goes to stderr. Exits non-zero when either part fails
+# (stability.sh: some explicit run at or below stable_time_step() was not stable).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/pareto.sh
+scripts/stability.sh
