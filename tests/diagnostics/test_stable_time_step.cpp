@@ -127,7 +127,8 @@ TEST_CASE("stable_time_step: one pinned spring: omega_max = sqrt(k/m), Symplecti
   CHECK(max_amplitude<massspring::SymplecticEuler>(s, 1.02 * h, 20000, 1.0) > 1.0);
 }
 
-TEST_CASE("stable_time_step: safety times stability_limit, 0.5 by default, refused outside 0 to 1") {
+TEST_CASE(
+    "stable_time_step: safety times stability_limit, 0.5 by default, refused outside 0 to 1") {
   const auto s = massspring::test::oscillator<SystemS>(0.5, 8, 1.0, 0.1);
   for (const auto method :
        {ExplicitMethod::SymplecticEuler, ExplicitMethod::RK4, ExplicitMethod::ForwardEuler}) {
