@@ -88,3 +88,48 @@ TEST_CASE("storage_traits<Sparse>::from_triplets sums duplicates") {
   CHECK(m.coeff(1, 0) == -1.0);
   CHECK(m.nonZeros() == 2);
 }
+
+TEST_CASE("LowerFactor: forward and back substitution each equal Eigen's triangular solves") {
+  // Rows and columns of every length, odd and even (the substitutions split each sum in two).
+  for (const int edges : {0, 40, 1200}) {
+    CAPTURE(edges);
+    const int n = 300;
+    const auto q = random_spd<double>(n, edges, 5);
+    massspring::SparseCholesky<double> llt;
+    REQUIRE(llt.compute(q));
+    const auto& l = llt.factor();
+    const auto view = llt.lower();
+    // The row copy is the strict lower part of L, row by row, columns ascending.
+    const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows =
+        Eigen::SparseMatrix<double, Eigen::ColMajor, int>(l.triangularView<Eigen::StrictlyLower>());
+    REQUIRE(view.row_outer[n] == rows.nonZeros());
+    for (int i = 0; i <= n; ++i) REQUIRE(view.row_outer[i] == rows.outerIndexPtr()[i]);
+    for (Eigen::Index p = 0; p < rows.nonZeros(); ++p) {
+      REQUIRE(view.row_inner[p] == rows.innerIndexPtr()[p]);
+      REQUIRE(view.row_value[p] == rows.valuePtr()[p]);
+    }
+
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> b = Eigen::MatrixXd::Random(n, 3);
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> w = b;
+    view.forward(w.data());
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> z = l.triangularView<Eigen::Lower>().solve(b);
+    CHECK((w - z).norm() <= 1e-13 * z.norm());
+    w = b;
+    view.backward(w.data());
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> u =
+        l.transpose().triangularView<Eigen::Upper>().solve(b);
+    CHECK((w - u).norm() <= 1e-13 * u.norm());
+  }
+}
+
+TEST_CASE("LowerFactorRows refuses a column that does not start with its diagonal") {
+  // 2 x 2, column 0 holding only the entry (1, 0): no diagonal first.
+  const int outer[] = {0, 1, 2};
+  const int inner[] = {1, 1};
+  const double value[] = {0.5, 2.0};
+  massspring::detail::LowerFactorRows<double> rows;
+  CHECK_FALSE(rows.build(2, outer, inner, value));
+  const int good_inner[] = {0, 1};
+  CHECK(rows.build(2, outer, good_inner, value));
+  CHECK(rows.inv_diag[0] == doctest::Approx(2.0));
+}

@@ -599,7 +599,7 @@ class FastMassSpring {
       int e = 0;
       for (int j = 0; j < nr_; ++j) {
         e = spring_run<true, Energy>(j, e, x, w, spring);
-        l.forward_column(j, w);
+        l.forward_row(j, w);
       }
       for (int a = nr_; a < nx_; ++a) e = spring_run<true, Energy>(a, e, x, w, spring);
       l.backward(w);

@@ -90,12 +90,9 @@ class CholmodCholesky {
     outer_.assign(p, p + n + 1);
     inner_.assign(i, i + p[n]);
     value_.resize(std::size_t(p[n]));
-    inv_diag_.resize(n);
     for (std::size_t k = 0; k < std::size_t(p[n]); ++k) value_[k] = Scalar(x[k]);
-    for (std::size_t j = 0; j < n; ++j) {
-      if (inner_[std::size_t(outer_[j])] != int(j)) return false;  // not diagonal-first
-      inv_diag_[j] = Scalar(1) / value_[std::size_t(outer_[j])];
-    }
+    // false when a column does not hold its diagonal first
+    if (!rows_.build(int(n), outer_.data(), inner_.data(), value_.data())) return false;
     perm_.resize(Eigen::Index(n));
     for (std::size_t k = 0; k < n; ++k) perm_(perm[k]) = int(k);
     work_.resize(Eigen::Index(n), 3);
@@ -110,10 +107,11 @@ class CholmodCholesky {
   [[nodiscard]] Eigen::Index rows() const { return work_.rows(); }
   /// @brief Stored entries of the factor L (diagonal included).
   [[nodiscard]] Eigen::Index factor_nonzeros() const { return Eigen::Index(inner_.size()); }
-  /// @brief Bytes the factor takes (values, row indices, column starts, inverse diagonal).
+  /// @brief Bytes the factor takes: the column-compressed L (values, row indices, column starts)
+  /// plus the inverse diagonal and the row-compressed copy the substitutions read.
   [[nodiscard]] std::size_t factor_bytes() const {
     return inner_.size() * (sizeof(Scalar) + sizeof(int)) + outer_.size() * sizeof(int) +
-           inv_diag_.size() * sizeof(Scalar);
+           rows_.bytes();
   }
   /// @brief Row i of Q's unknowns is row permutation()[i] of the factor's order.
   [[nodiscard]] const Eigen::VectorXi& permutation() const { return perm_; }
@@ -122,7 +120,7 @@ class CholmodCholesky {
 
   /// @brief L and its inverse diagonal (see detail::LowerFactor).
   [[nodiscard]] detail::LowerFactor<Scalar, int> lower() const {
-    return {int(rows()), outer_.data(), inner_.data(), value_.data(), inv_diag_.data()};
+    return rows_.view(int(rows()), outer_.data(), inner_.data(), value_.data());
   }
   /// @brief w = (P Q P^T)^-1 w, w row-major #rows x 3 in the factor's order. No allocation.
   void solve_in_place(Scalar* w) const { lower().solve(w); }
@@ -174,7 +172,8 @@ class CholmodCholesky {
   cholmod_factor* factor_ = nullptr;
   int analysed_ordering_ = -1;
   std::vector<int> outer_, inner_;
-  std::vector<Scalar> value_, inv_diag_;
+  std::vector<Scalar> value_;
+  detail::LowerFactorRows<Scalar> rows_;
   Eigen::VectorXi perm_;
   Points<Scalar> work_;
   bool ok_ = false;
