@@ -67,6 +67,8 @@ constexpr int kWarmFrames = 10;  // plain steps before the step whose error is m
 // n^2, factorisation as n^3 / 3 and each iteration's solve as n^2. flag (3200 points), curtain
 // (6561) and skirt (9840) are Sparse only, likewise.
 constexpr int kGridSizes[] = {32, 64, 128};
+// Smaller cloths run only the two-thread comparison (where its crossover lies).
+constexpr int kThreadOnlyGridSizes[] = {8, 16};
 constexpr int kDenseLimit = 32;
 
 // Time to error: the accelerated solvers, per scene.
@@ -86,6 +88,7 @@ struct Scene {
   std::shared_ptr<const FloatSystem> single;  // float, for exact pins
   std::shared_ptr<const SparseSystem> warm;   // after kWarmFrames plain steps (accelerate)
   Acceleration acceleration;
+  bool threads_only = false;  // only the two-thread comparison
 };
 
 std::vector<Scene>& scenes() {
@@ -199,12 +202,16 @@ void bm_step(benchmark::State& state, const Scene& scene, const System& proto, A
 // FastMassSpring's own Q, for an n x 3 right-hand side in the factor's row order (as FastMassSpring
 // keeps its iterate), and nothing else.
 template <class System, class Adjust>
-void bm_floor(benchmark::State& state, const Scene& scene, const System& proto, Adjust adjust) {
+void bm_floor(benchmark::State& state, const Scene& scene, const System& proto, Adjust adjust,
+              int threads = 1) {
   using Scalar = typename System::Scalar;
   auto options = options_for<Scalar>(scene);
   adjust(options);
   massspring::FastMassSpring<System> solver(options);
   typename System::Traits::Cholesky cholesky;
+  if constexpr (std::is_same_v<System, SparseSystem>) {
+    if (threads > 1) cholesky.set_threads(threads);
+  }
   if (!precompute_or_skip(state, solver, proto)) return;
   if (!cholesky.compute(solver.system_matrix())) {
     state.SkipWithError("Q is not positive definite");
@@ -391,6 +398,18 @@ std::shared_ptr<const System> make(const Description& d) {
 }
 
 void add_scenes() {
+  for (const int n : kThreadOnlyGridSizes) {
+    massspring::ClothOptions o;
+    o.columns = o.rows = n;
+    o.shear = massspring::ClothShear::Both;
+    o.pins = massspring::ClothPins::TopCorners;
+    o.stiffness = 1000;
+    Scene s;
+    s.name = "cloth" + std::to_string(n);
+    s.threads_only = true;
+    s.sparse = make<SparseSystem>(massspring::make_cloth(o));
+    scenes().push_back(std::move(s));
+  }
   for (const int n : kGridSizes) {
     massspring::ClothOptions o;
     o.columns = o.rows = n;
@@ -482,6 +501,23 @@ void register_benchmarks() {
     const auto reg = [&](auto how, const char* what, const char* solver, auto body) {
       how(benchmark::RegisterBenchmark(name(what, solver).c_str(), body));
     };
+    // One thread against two (options.threads, OpenMP): the floor and the plain step.
+    reg(repeated, "Floor", "Threads1",
+        [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kSeedLike, 1); });
+    reg(repeated, "Step", "Threads1", [sc](benchmark::State& st) {
+      bm_step(st, *sc, *sc->sparse, kSeedLike, static_cast<const SparseSystem*>(nullptr),
+              "Sparse: one step, one thread");
+    });
+#ifdef _OPENMP
+    reg(repeated, "Floor", "Threads2",
+        [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kSeedLike, 2); });
+    reg(repeated, "Step", "Threads2", [sc](benchmark::State& st) {
+      bm_step(
+          st, *sc, *sc->sparse, [](auto& o) { o.threads = 2; },
+          static_cast<const SparseSystem*>(nullptr), "Sparse: one step, two threads");
+    });
+#endif
+    if (s.threads_only) continue;
     reg(once, "Precompute", "Sparse",
         [sc](benchmark::State& st) { bm_precompute(st, *sc, *sc->sparse); });
     reg(once, "Precompute", "Seed",
@@ -531,6 +567,21 @@ void register_benchmarks() {
             sc->warm.get(), "Sparse, Chebyshev: one step to the error of 50 plain iterations");
       });
     }
+#ifdef _OPENMP
+    if (s.accelerate && s.acceleration.chebyshev > 0) {
+      const int k = s.acceleration.chebyshev;
+      reg(repeated, "Step", "ChebyshevThreads2", [sc, k](benchmark::State& st) {
+        bm_step(
+            st, *sc, *sc->sparse,
+            [k](auto& o) {
+              kChebyshev(o);
+              o.iterations = k;
+              o.threads = 2;
+            },
+            sc->warm.get(), "Sparse, Chebyshev, two threads: one step to the error of 50 plain");
+      });
+    }
+#endif
     if (s.accelerate && s.acceleration.anderson > 0) {
       const int k = s.acceleration.anderson;
       reg(repeated, "Step", "Anderson", [sc, k](benchmark::State& st) {
@@ -568,7 +619,18 @@ class RecordingReporter : public benchmark::ConsoleReporter {
         single_[key].push_back(ms);
       else if (run.aggregate_name == "median")
         median_[key] = ms;
+      // Wall clock, for the two-thread comparison (CPU time counts one thread only).
+      if (run.run_type != Run::RT_Iteration && run.aggregate_name == "median")
+        real_median_[key] =
+            run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit) * 1e3;
     }
+  }
+
+  /// @brief Wall-clock milliseconds per iteration (median of the repetitions) of benchmark
+  /// `name`, or a negative number when it did not run.
+  [[nodiscard]] double real_ms(const std::string& name) const {
+    const auto m = real_median_.find(name);
+    return m == real_median_.end() ? -1 : m->second;
   }
 
   /// @brief Milliseconds per iteration of benchmark `name`, or a negative number when it did not
@@ -584,7 +646,7 @@ class RecordingReporter : public benchmark::ConsoleReporter {
 
  private:
   std::map<std::string, std::vector<double>> single_;
-  std::map<std::string, double> median_;
+  std::map<std::string, double> median_, real_median_;
 };
 
 std::string cell(double value, const char* format) {
@@ -643,18 +705,22 @@ void print_summary(const RecordingReporter& r) {
       kIterations, kWarmFrames);
   std::printf(
       "| scene | plain error at 50 | rho (estimated) | Chebyshev k | Chebyshev ms | seed/Chebyshev "
-      "| Anderson k | Anderson ms | seed/Anderson | seed ms |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "| Anderson k | Anderson ms | seed/Anderson | seed ms | Chebyshev, 2 threads, wall ms | "
+      "seed/that (wall) |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Scene& s : scenes()) {
     if (!s.accelerate) continue;
     const Acceleration& a = s.acceleration;
     const double seed = t(s, "Step", "Seed"), cheb = t(s, "Step", "Chebyshev"),
                  anderson = t(s, "Step", "Anderson");
-    std::printf("| %s | %.3g | %.5f | %d | %s | %s | %d | %s | %s | %s |\n", s.name.c_str(),
-                a.error(a.e_plain), a.chebyshev_rho, a.chebyshev, cell(cheb, "%.3f").c_str(),
-                cell(ratio(seed, cheb), "%.1fx").c_str(), a.anderson,
+    const double cheb2 = r.real_ms("Step/ChebyshevThreads2/" + s.name),
+                 seed_wall = r.real_ms("Step/Seed/" + s.name);
+    std::printf("| %s | %.3g | %.5f | %d | %s | %s | %d | %s | %s | %s | %s | %s |\n",
+                s.name.c_str(), a.error(a.e_plain), a.chebyshev_rho, a.chebyshev,
+                cell(cheb, "%.3f").c_str(), cell(ratio(seed, cheb), "%.1fx").c_str(), a.anderson,
                 cell(anderson, "%.3f").c_str(), cell(ratio(seed, anderson), "%.1fx").c_str(),
-                cell(seed, "%.3f").c_str());
+                cell(seed, "%.3f").c_str(), cell(cheb2, "%.3f").c_str(),
+                cell(ratio(seed_wall, cheb2), "%.1fx").c_str());
   }
 
   std::printf("\n## float against double: exact pins, %d iterations, medians [ms]\n\n",
@@ -672,6 +738,30 @@ void print_summary(const RecordingReporter& r) {
                 cell(ratio(d, f), "%.2fx").c_str(), cell(df, "%.4f").c_str(),
                 cell(ff, "%.4f").c_str(), cell(ratio(d / kIterations, df), "%.2f").c_str(),
                 cell(ratio(f / kIterations, ff), "%.2f").c_str());
+  }
+
+  std::printf(
+      "\n## two threads against one: options.threads = 2 (OpenMP), plain step with %d "
+      "iterations and the floor, medians of the wall clock [ms]\n\n",
+      kIterations);
+  std::printf(
+      "| scene | points | nnz(L) | floor, 1 thread | floor, 2 threads | floor 1/2 | step, 1 thread "
+      "| "
+      "step, 2 threads | step 1/2 |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const Scene& s : scenes()) {
+    const auto real = [&](const char* what, const char* solver) {
+      return r.real_ms(std::string(what) + "/" + solver + "/" + s.name);
+    };
+    const double f1 = real("Floor", "Threads1"), f2 = real("Floor", "Threads2"),
+                 s1 = real("Step", "Threads1"), s2 = real("Step", "Threads2");
+    if (f1 < 0 && s1 < 0) continue;
+    massspring::FastMassSpring<SparseSystem> solver(options_for<double>(s));
+    solver.precompute(*s.sparse, kDt);
+    std::printf("| %s | %d | %ld | %s | %s | %s | %s | %s | %s |\n", s.name.c_str(),
+                s.sparse->num_points(), long(solver.factor_nonzeros()), cell(f1, "%.4f").c_str(),
+                cell(f2, "%.4f").c_str(), cell(ratio(f1, f2), "%.2fx").c_str(),
+                cell(s1, "%.3f").c_str(), cell(s2, "%.3f").c_str(),
+                cell(ratio(s1, s2), "%.2fx").c_str());
   }
 
   bool header = false;

@@ -3,7 +3,9 @@
 //
 // Per grid: precompute time (build Q, order, factorise), nnz(L), the factor's bytes, time per
 // local-global iteration (steps of `--iterations` iterations), that time / (n log2 n), and the
-// process's peak resident memory so far (getrusage). Prints a Markdown table.
+// process's peak resident memory so far (getrusage), and, built with OpenMP, the time per
+// iteration again with options.threads = 2 (the substitutions on two threads). Prints a Markdown
+// table.
 //
 //   bench_scale                          # the sweep 32, 64, 128, 256, 512
 //   bench_scale --grid 1000 --frames 10  # one grid (1000 x 1000: a million points)
@@ -58,23 +60,34 @@ void run(int n, int frames, int iterations) {
   solver.precompute(system, 1.0 / 30);
   const double precompute_s = seconds_since(t_pre);
 
-  std::vector<double> per_iteration;
   bool finite = true;
-  for (int frame = 0; frame < frames; ++frame) {
-    const auto t0 = Clock::now();
-    const massspring::StepReport r = solver.step(system);
-    per_iteration.push_back(seconds_since(t0) / std::max(r.iterations, 1));
-    finite = finite && r.ok();
-  }
-  std::sort(per_iteration.begin(), per_iteration.end());
-  const double it_ms = per_iteration[per_iteration.size() / 2] * 1e3;
+  // Median wall-clock ms per iteration over the frames.
+  const auto time_frames = [&] {
+    std::vector<double> per_iteration;
+    for (int frame = 0; frame < frames; ++frame) {
+      const auto t0 = Clock::now();
+      const massspring::StepReport r = solver.step(system);
+      per_iteration.push_back(seconds_since(t0) / std::max(r.iterations, 1));
+      finite = finite && r.ok();
+    }
+    std::sort(per_iteration.begin(), per_iteration.end());
+    return per_iteration[per_iteration.size() / 2] * 1e3;
+  };
+  const double it_ms = time_frames();
+  std::string two_threads = "- | -";
+#ifdef _OPENMP
+  solver.options.threads = 2;
+  const double it2_ms = time_frames();
+  two_threads = std::to_string(it2_ms).substr(0, 8) + " | " +
+                std::to_string(it_ms / it2_ms).substr(0, 4) + "x";
+#endif
   const double points = double(system.num_points());
   const double nlogn = points * std::log2(points);
-  std::printf("| %d | %d | %d | %.3f | %.3f | %ld | %.1f | %.4f | %.3f | %.1f | %s |\n", n,
+  std::printf("| %d | %d | %d | %.3f | %.3f | %ld | %.1f | %.4f | %.3f | %.1f | %s | %s |\n", n,
               system.num_points(), system.num_springs(), scene_s, precompute_s,
               long(solver.factor_nonzeros()),
               double(solver.factorization().factor_bytes()) / (1024.0 * 1024.0), it_ms,
-              it_ms * 1e6 / nlogn, peak_rss_mib(), finite ? "yes" : "NO");
+              it_ms * 1e6 / nlogn, peak_rss_mib(), finite ? "yes" : "NO", two_threads.c_str());
   std::fflush(stdout);
 }
 
@@ -99,8 +112,9 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "| grid | points | springs | scene s | precompute s | nnz(L) | factor MiB | ms/iteration | "
-      "ns/iteration / (n log2 n) | peak RSS MiB | finite |\n"
-      "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+      "ns/iteration / (n log2 n) | peak RSS MiB | finite | ms/iteration, 2 threads | 1 thread / "
+      "2 |\n"
+      "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
   for (const int n : grids) run(n, frames, iterations);
   return 0;
 }

@@ -801,3 +801,65 @@ TEST_CASE("invalid acceleration options are refused") {
   solver.options.anderson_window = 17;
   CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("anderson_window"), Error);
 }
+
+// ---- threads -------------------------------------------------------------------------------
+
+TEST_CASE("options.threads: refused below 1, and on Dense storage above 1") {
+  using System = MassSpringSystem<double>;
+  System s = small_cloth<System>();
+  FastMassSpring<System> solver;
+  solver.options.threads = 0;
+  CHECK_THROWS_WITH_AS(solver.precompute(s, 0.1),
+                       "FastMassSpring: options.threads must be >= 1, got 0", Error);
+  using DenseSystem = MassSpringSystem<double, Dense>;
+  DenseSystem d = small_cloth<DenseSystem>();
+  FastMassSpring<DenseSystem> dense;
+  dense.options.threads = 2;
+  CHECK_THROWS_WITH_AS(dense.precompute(d, 0.1), doctest::Contains("one thread only"), Error);
+#ifndef _OPENMP
+  solver.options.threads = 2;
+  CHECK_THROWS_WITH_AS(solver.precompute(s, 0.1), doctest::Contains("needs OpenMP"), Error);
+#endif
+}
+
+#ifdef _OPENMP
+TEST_CASE("options.threads = 2 gives the one-thread trajectory bit for bit, allocation-free") {
+  using System = MassSpringSystem<double>;
+  for (const auto acceleration :
+       {massspring::Acceleration::None, massspring::Acceleration::Chebyshev}) {
+    CAPTURE(int(acceleration));
+    System a = small_cloth<System>(24, 20), b = a;
+    FastMassSpring<System> one, two;
+    for (auto* solver : {&one, &two}) {
+      solver->options.gravity = {0, -9.8, 0};
+      solver->options.acceleration = acceleration;
+      solver->options.iterations = 20;
+    }
+    two.options.threads = 2;
+    one.precompute(a, 1.0 / 30);
+    two.precompute(b, 1.0 / 30);
+    for (int frame = 0; frame < 5; ++frame) {
+      one.step(a);
+      two.step(b);
+    }
+    CHECK(a.positions() == b.positions());
+    CHECK(a.velocities() == b.velocities());
+    std::size_t allocations = 0;
+    {
+      massspring::test::CountAllocations count;
+      for (int frame = 0; frame < 3; ++frame) two.step(b);
+      allocations = count.count();
+    }
+    CHECK(allocations == 0);
+    for (int frame = 0; frame < 3; ++frame) one.step(a);
+    CHECK(a.positions() == b.positions());
+    // Back to one thread at the next step, without refactorising: still the same.
+    two.options.threads = 1;
+    for (int frame = 0; frame < 3; ++frame) {
+      one.step(a);
+      CHECK_FALSE(two.step(b).refactorized);
+    }
+    CHECK(a.positions() == b.positions());
+  }
+}
+#endif

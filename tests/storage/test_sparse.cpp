@@ -133,3 +133,55 @@ TEST_CASE("LowerFactorRows refuses a column that does not start with its diagona
   CHECK(rows.build(2, outer, good_inner, value));
   CHECK(rows.inv_diag[0] == doctest::Approx(2.0));
 }
+
+#ifdef _OPENMP
+TEST_CASE("SparseCholesky with threads: a valid split, and the same solution bit for bit") {
+  for (const int threads : {2, 3}) {
+    for (const int edges : {0, 600, 1200}) {
+      CAPTURE(threads);
+      CAPTURE(edges);
+      const int n = 300;
+      const auto q = random_spd<double>(n, edges, 13);
+      massspring::SparseCholesky<double> serial, parallel;
+      parallel.set_threads(threads);
+      REQUIRE(serial.compute(q));
+      REQUIRE(parallel.compute(q));
+      CHECK(parallel.threads() == threads);
+      // The split: every row once; a part's rows have their parent in the same part or the top,
+      // the top's rows have theirs in the top (so each part substitutes without the others).
+      const auto v = parallel.lower();
+      REQUIRE(v.parts == threads);
+      std::vector<int> label(n, -2);
+      for (int t = 0; t <= threads; ++t)
+        for (int q_ = v.part_start[t]; q_ < v.part_start[t + 1]; ++q_) {
+          REQUIRE(label[v.schedule[q_]] == -2);
+          label[v.schedule[q_]] = t == threads ? -1 : t;
+          if (q_ > v.part_start[t]) CHECK(v.schedule[q_ - 1] < v.schedule[q_]);  // ascending
+        }
+      REQUIRE(v.part_start[threads + 1] == n);
+      for (int j = 0; j < n; ++j) {
+        REQUIRE(label[j] != -2);
+        for (int p = v.outer[j] + 1; p < v.outer[j + 1]; ++p) {  // every ancestor of j
+          const int i = v.inner[p];
+          CHECK((label[i] == -1 || label[i] == label[j]));
+        }
+      }
+      const massspring::Points<double> b = massspring::Points<double>::Random(n, 3);
+      massspring::Points<double> x1(n, 3), x2(n, 3);
+      serial.solve(b, x1);
+      parallel.solve(b, x2);
+      CHECK(x1 == x2);
+      CHECK((q * x2 - b).norm() <= 1e-12 * b.norm());
+    }
+  }
+}
+#endif
+
+TEST_CASE("SparseCholesky::set_threads refuses bad counts") {
+  massspring::SparseCholesky<double> llt;
+  CHECK_THROWS_WITH_AS(llt.set_threads(0), doctest::Contains("threads must be >= 1, got 0"),
+                       massspring::Error);
+#ifndef _OPENMP
+  CHECK_THROWS_WITH_AS(llt.set_threads(2), doctest::Contains("needs OpenMP"), massspring::Error);
+#endif
+}

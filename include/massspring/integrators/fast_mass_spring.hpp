@@ -102,6 +102,14 @@ struct FastMassSpringOptions {
   int anderson_window = 5;
   /// @brief Allow PinMode::Penalty in float (refused otherwise: see PinMode::Penalty).
   bool allow_float_penalty = false;
+  /// @brief Threads for the global step's substitutions (>= 1; default 1). With t > 1, Sparse
+  /// storage splits the factor's rows along its elimination tree and substitutes on t OpenMP
+  /// threads, with the same result bit for bit (SparseCholesky::set_threads); the spring pass
+  /// stays on one thread. Needs OpenMP (-fopenmp, OpenMP::OpenMP_CXX) and a Cholesky with
+  /// set_threads(); refused otherwise. Pays only on large factors: docs/performance.md gives the
+  /// crossover measured on 2 cores. A change takes effect at the next step (planning the split
+  /// allocates, once).
+  int threads = 1;
 };
 
 /// @brief Local-global ("fast mass-spring") integrator of Liu et al. 2013.
@@ -175,6 +183,7 @@ class FastMassSpring {
       build(system);
       report.refactorized = true;
     }
+    apply_threads();
     prepare(system);
     Scalar* result = nullptr;
     switch (options.acceleration) {
@@ -270,6 +279,28 @@ class FastMassSpring {
     if (options.anderson_window < 1 || options.anderson_window > kMaxWindow)
       throw Error(detail::message("FastMassSpring: options.anderson_window must be in [1, ",
                                   kMaxWindow, "], got ", options.anderson_window));
+    if (options.threads < 1)
+      throw Error(
+          detail::message("FastMassSpring: options.threads must be >= 1, got ", options.threads));
+    if constexpr (!has_threads<Cholesky>::value) {
+      if (options.threads > 1)
+        throw Error(detail::message("FastMassSpring: options.threads = ", options.threads,
+                                    ": this storage's Cholesky solves on one thread only (use "
+                                    "Sparse storage)"));
+    }
+  }
+
+  template <class C, class = void>
+  struct has_threads : std::false_type {};
+  template <class C>
+  struct has_threads<C, std::void_t<decltype(std::declval<C&>().set_threads(1))>> : std::true_type {
+  };
+
+  // The solver's threads to the options' (SparseCholesky::set_threads checks for OpenMP).
+  void apply_threads() {
+    if constexpr (has_threads<Cholesky>::value) {
+      if (llt_.threads() != options.threads) llt_.set_threads(options.threads);
+    }
   }
 
   // ---- precompute -------------------------------------------------------------------------------
@@ -327,6 +358,7 @@ class FastMassSpring {
       for (int p : system.pinned()) t.emplace_back(p, p, weight_);
     q_ = Traits::from_triplets(nr_, nr_, t);
     std::vector<Triplet>().swap(t);
+    apply_threads();
     if (!llt_.compute(q_))
       throw Error(
           detail::message("FastMassSpring: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",

@@ -7,11 +7,17 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
+#include "massspring/error.hpp"
 #include "massspring/storage/tags.hpp"
+#include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {
@@ -41,6 +47,13 @@ struct LowerFactor {
   const Index* row_outer = nullptr;   // row starts (n + 1) of the strict lower part
   const Index* row_inner = nullptr;   // its column indices, ascending in each row
   const Scalar* row_value = nullptr;  // its values
+  /// Parallel schedule (see LowerFactorRows::plan_threads): parts 0 .. parts - 1 are the rows
+  /// schedule[part_start[t] .. part_start[t + 1]), each a union of whole subtrees of L's
+  /// elimination tree, ascending; schedule[part_start[parts] .. n) are the rows above them (the
+  /// top, ascending). parts == 0: no schedule.
+  const Index* schedule = nullptr;
+  const Index* part_start = nullptr;
+  int parts = 0;
 
   /// @brief Row i of the forward substitution L z = w: z_i = (w_i - sum_{j<i} L(i, j) z_j) /
   /// L(i, i). Rows must be done in order 0, 1, ..., n - 1; row i of w must be complete (every
@@ -73,37 +86,71 @@ struct LowerFactor {
     for (Index i = 0; i < n; ++i) forward_row(i, w);
   }
 
-  /// @brief The back substitution L^T u = z in place; column j of L is row j of L^T (a gather from
-  /// the rows below).
-  void backward(Scalar* w) const {
-    for (Index j = n - 1; j >= 0; --j) {
-      Scalar s0 = w[3 * j], s1 = w[3 * j + 1], s2 = w[3 * j + 2];
-      Scalar t0 = 0, t1 = 0, t2 = 0;
-      const Index first = outer[j] + 1;  // past the diagonal
-      Index p = outer[j + 1] - 1;
-      for (; p > first; p -= 2) {
-        const Scalar* wi = w + 3 * inner[p];
-        const Scalar* wk = w + 3 * inner[p - 1];
-        const Scalar li = value[p], lk = value[p - 1];
-        s0 -= li * wi[0], s1 -= li * wi[1], s2 -= li * wi[2];
-        t0 += lk * wk[0], t1 += lk * wk[1], t2 += lk * wk[2];
-      }
-      if (p == first) {
-        const Scalar* wi = w + 3 * inner[p];
-        const Scalar li = value[p];
-        s0 -= li * wi[0], s1 -= li * wi[1], s2 -= li * wi[2];
-      }
-      const Scalar inv = inv_diag[j];
-      w[3 * j] = (s0 - t0) * inv;
-      w[3 * j + 1] = (s1 - t1) * inv;
-      w[3 * j + 2] = (s2 - t2) * inv;
+  /// @brief Row j of the back substitution L^T u = z: u_j = (z_j - sum_{i>j} L(i, j) u_i) /
+  /// L(j, j), a gather from the rows below, column j of L read from its last entry up. Rows must
+  /// be done in order n - 1, ..., 0 (or any order that finishes every row i with L(i, j) != 0
+  /// before j).
+  void backward_row(Index j, Scalar* w) const {
+    Scalar s0 = w[3 * j], s1 = w[3 * j + 1], s2 = w[3 * j + 2];
+    Scalar t0 = 0, t1 = 0, t2 = 0;
+    const Index first = outer[j] + 1;  // past the diagonal
+    Index p = outer[j + 1] - 1;
+    for (; p > first; p -= 2) {
+      const Scalar* wi = w + 3 * inner[p];
+      const Scalar* wk = w + 3 * inner[p - 1];
+      const Scalar li = value[p], lk = value[p - 1];
+      s0 -= li * wi[0], s1 -= li * wi[1], s2 -= li * wi[2];
+      t0 += lk * wk[0], t1 += lk * wk[1], t2 += lk * wk[2];
     }
+    if (p == first) {
+      const Scalar* wi = w + 3 * inner[p];
+      const Scalar li = value[p];
+      s0 -= li * wi[0], s1 -= li * wi[1], s2 -= li * wi[2];
+    }
+    const Scalar inv = inv_diag[j];
+    w[3 * j] = (s0 - t0) * inv;
+    w[3 * j + 1] = (s1 - t1) * inv;
+    w[3 * j + 2] = (s2 - t2) * inv;
+  }
+
+  /// @brief The back substitution L^T u = z in place.
+  void backward(Scalar* w) const {
+    for (Index j = n - 1; j >= 0; --j) backward_row(j, w);
   }
 
   /// @brief w = (L L^T)^-1 w.
   void solve(Scalar* w) const {
     forward(w);
     backward(w);
+  }
+
+  /// @brief w = (L L^T)^-1 w on `parts` OpenMP threads along the schedule: each thread
+  /// substitutes forward its part (a union of subtrees, which needs no other rows), one thread the
+  /// top after a barrier, forward then back, and after a second barrier each thread its part
+  /// back. The same operations as solve() in the same order within each row: the same result, bit
+  /// for bit. Without OpenMP (or without a schedule) it is solve().
+  void solve_parallel(Scalar* w) const {
+#ifdef _OPENMP
+    if (parts < 2) return solve(w);
+#pragma omp parallel num_threads(parts)
+    {
+      const int t = omp_get_thread_num();
+      const int threads = omp_get_num_threads();  // fewer than asked: the parts are shared out
+      for (int part = t; part < parts; part += threads)
+        for (Index q = part_start[part]; q < part_start[part + 1]; ++q) forward_row(schedule[q], w);
+#pragma omp barrier
+#pragma omp single
+      {
+        for (Index q = part_start[parts]; q < n; ++q) forward_row(schedule[q], w);
+        for (Index q = n - 1; q >= part_start[parts]; --q) backward_row(schedule[q], w);
+      }  // (an implied barrier)
+      for (int part = t; part < parts; part += threads)
+        for (Index q = part_start[part + 1] - 1; q >= part_start[part]; --q)
+          backward_row(schedule[q], w);
+    }
+#else
+    solve(w);
+#endif
   }
 };
 
@@ -140,18 +187,107 @@ struct LowerFactorRows {
     return true;
   }
 
-  /// @brief Bytes held (inverse diagonal and the row copy).
+  std::vector<int> schedule, part_start;  // see LowerFactor::schedule; empty: none
+
+  /// @brief Splits the rows over `parts` threads (>= 2) along the elimination tree of L (column
+  /// j's parent is the row of its first off-diagonal entry): the tree is opened from its roots,
+  /// always at the subtree of most entries, the open subtrees are dealt to the parts
+  /// largest-first, each to the part with the fewest entries so far (LPT), and of these splits the
+  /// one whose top plus largest part has the fewest entries is kept. Cost O(n) per split tried,
+  /// at most 256 tried (opening a chain node is not a try); allocates. Call after build() with
+  /// the same arrays.
+  void plan_threads(int parts, int n, const int* col_outer, const int* col_inner) {
+    schedule.clear();
+    part_start.clear();
+    if (parts < 2 || n < 2) return;
+    const auto un = std::size_t(n);
+    std::vector<int> parent(un, -1);
+    std::vector<double> work(un), subtree(un);
+    for (int j = 0; j < n; ++j) {
+      if (col_outer[j + 1] - col_outer[j] > 1) parent[std::size_t(j)] = col_inner[col_outer[j] + 1];
+      work[std::size_t(j)] = subtree[std::size_t(j)] = double(col_outer[j + 1] - col_outer[j]);
+    }
+    for (int j = 0; j < n; ++j)  // a parent's index is above its children's
+      if (parent[std::size_t(j)] >= 0)
+        subtree[std::size_t(parent[std::size_t(j)])] += subtree[std::size_t(j)];
+    std::vector<std::vector<int>> children(un);
+    std::vector<int> open;  // roots of the open subtrees
+    for (int j = 0; j < n; ++j)
+      (parent[std::size_t(j)] >= 0 ? children[std::size_t(parent[std::size_t(j)])] : open)
+          .push_back(j);
+    // label: -1 top, else the part; decided for the open subtrees' roots by the best split.
+    std::vector<int> label(un, -2), best_label;
+    double top = 0, best = 0;
+    const auto by_size = [&](int a, int b) {
+      return subtree[std::size_t(a)] > subtree[std::size_t(b)];
+    };
+    // Opening a chain (one child) changes nothing to deal out: only splits with at least `parts`
+    // open subtrees are evaluated, at most 256 of them.
+    for (int tried = 0; tried < 256 && !open.empty();) {
+      std::sort(open.begin(), open.end(), by_size);
+      if (int(open.size()) >= parts) {
+        ++tried;
+        std::vector<double> load(std::size_t(parts), 0.0);
+        std::vector<int> assign(open.size());
+        for (std::size_t r = 0; r < open.size(); ++r) {
+          const auto least = std::size_t(std::min_element(load.begin(), load.end()) - load.begin());
+          load[least] += subtree[std::size_t(open[r])];
+          assign[r] = int(least);
+        }
+        const double makespan = top + *std::max_element(load.begin(), load.end());
+        if (best_label.empty() || makespan < best) {
+          best = makespan;
+          best_label = label;
+          for (std::size_t r = 0; r < open.size(); ++r)
+            best_label[std::size_t(open[r])] = assign[r];
+        }
+      }
+      const int widest = open.front();  // open the subtree of most entries
+      if (children[std::size_t(widest)].empty()) break;
+      open.erase(open.begin());
+      label[std::size_t(widest)] = -1;
+      top += work[std::size_t(widest)];
+      for (const int c : children[std::size_t(widest)]) open.push_back(c);
+    }
+    if (best_label.empty()) {  // a single chain: nothing to share, all in the top
+      best_label.assign(un, -1);
+    }
+    for (int j = n - 1; j >= 0; --j)  // the rest of each subtree takes its root's label
+      if (best_label[std::size_t(j)] == -2)
+        best_label[std::size_t(j)] = best_label[std::size_t(parent[std::size_t(j)])];
+    part_start.assign(std::size_t(parts) + 2, 0);
+    for (int j = 0; j < n; ++j) {
+      const int l = best_label[std::size_t(j)];
+      ++part_start[std::size_t(l < 0 ? parts : l) + 1];
+    }
+    for (int t = 0; t <= parts; ++t) part_start[std::size_t(t) + 1] += part_start[std::size_t(t)];
+    schedule.resize(std::size_t(n));
+    std::vector<int> next(part_start.begin(), part_start.end() - 1);
+    for (int j = 0; j < n; ++j) {
+      const int l = best_label[std::size_t(j)];
+      schedule[std::size_t(next[std::size_t(l < 0 ? parts : l)]++)] = j;
+    }
+  }
+
+  /// @brief Bytes held (inverse diagonal, the row copy and the schedule).
   [[nodiscard]] std::size_t bytes() const {
-    return inv_diag.size() * sizeof(Scalar) + (outer.size() + inner.size()) * sizeof(int) +
+    return inv_diag.size() * sizeof(Scalar) +
+           (outer.size() + inner.size() + schedule.size() + part_start.size()) * sizeof(int) +
            value.size() * sizeof(Scalar);
   }
 
   /// @brief The view over these and the column-compressed arrays.
   [[nodiscard]] LowerFactor<Scalar, int> view(int n, const int* col_outer, const int* col_inner,
                                               const Scalar* col_value) const {
-    return {
+    LowerFactor<Scalar, int> v{
         n,           col_outer, col_inner, col_value, inv_diag.data(), outer.data(), inner.data(),
         value.data()};
+    if (!part_start.empty()) {
+      v.schedule = schedule.data();
+      v.part_start = part_start.data();
+      v.parts = int(part_start.size()) - 2;
+    }
+    return v;
   }
 };
 
@@ -191,6 +327,8 @@ class SparseCholesky {
           p.size() > 0 ? p.indices() : Eigen::VectorXi::LinSpaced(q.rows(), 0, int(q.rows()) - 1);
       const Matrix& l = factor();
       ok_ = rows_.build(int(l.cols()), l.outerIndexPtr(), l.innerIndexPtr(), l.valuePtr());
+      if (ok_ && threads_ > 1)
+        rows_.plan_threads(threads_, int(l.cols()), l.outerIndexPtr(), l.innerIndexPtr());
     }
     return ok_;
   }
@@ -216,7 +354,37 @@ class SparseCholesky {
 
   /// @brief w = (P Q P^T)^-1 w for a #rows by 3 row-major array in the factor's order
   /// (w[3 r + c], r = permutation()[i] for Q's row i). No allocation, no permutation.
-  void solve_in_place(Scalar* w) const { lower().solve(w); }
+  void solve_in_place(Scalar* w) const {
+    if (threads_ > 1)
+      lower().solve_parallel(w);
+    else
+      lower().solve(w);
+  }
+
+  /// @brief Threads the substitutions use (default 1). With t > 1 the rows are split along the
+  /// elimination tree into t parts and a top (LowerFactorRows::plan_threads) and solve() runs on
+  /// t OpenMP threads, with the same result bit for bit. Worth it only for large factors: see
+  /// docs/performance.md for the measured crossover. Takes effect at once (plans the split when
+  /// a factor is there) and is kept across compute().
+  /// @throws Error for t < 1, or t > 1 when compiled without OpenMP (-fopenmp /
+  /// OpenMP::OpenMP_CXX).
+  void set_threads(int threads) {
+    if (threads < 1)
+      throw Error(detail::message("SparseCholesky: threads must be >= 1, got ", threads));
+#ifndef _OPENMP
+    if (threads > 1)
+      throw Error(
+          detail::message("SparseCholesky: threads = ", threads,
+                          " needs OpenMP; compile with -fopenmp (link OpenMP::OpenMP_CXX)"));
+#endif
+    threads_ = threads;
+    if (ok_) {
+      const Matrix& l = factor();
+      rows_.plan_threads(threads_, int(l.cols()), l.outerIndexPtr(), l.innerIndexPtr());
+    }
+  }
+  /// @brief Threads the substitutions use (see set_threads()).
+  [[nodiscard]] int threads() const { return threads_; }
 
   /// @brief L and its inverse diagonal, for substitutions fused with other work (see
   /// detail::LowerFactor). Valid until the next compute().
@@ -250,6 +418,7 @@ class SparseCholesky {
   Eigen::VectorXi perm_;
   detail::LowerFactorRows<Scalar> rows_;
   Points<Scalar> work_;
+  int threads_ = 1;
   bool ok_ = false;
 };
 
