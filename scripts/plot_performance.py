@@ -73,12 +73,23 @@ NOTES = """
   read-modify-write chain through memory when consecutive springs share a point (springs sorted by
   their lower row, whose share is summed in registers), the energy evaluation in every iteration
   (only where the report or the tolerance needs it), and the copy of the solution. What is left
-  above the floor is the spring pass itself: about 4-5 ns per spring on this machine, which is
-  0.35-0.4 floors on the flag (3.9 springs per point, only 25 factor entries per row), ~0.3 on
-  the skirt and ~0.2 on the curtain (57 factor entries per row). Tried and dropped because they
-  measured slower: fusing the spring pass into the forward substitution (flag 1.63 against 1.40
-  floors), batching square roots and divisions through Eigen packets, an SSE reciprocal square
-  root with Newton steps.
+  above the floor is the spring pass itself: about 4.5 ns per spring on this machine, of which the
+  square root and the division are about 2 ns (measured by replacing them). Tried and dropped
+  because they measured slower: fusing the spring pass into the forward substitution (column
+  form: flag 1.63 against 1.40 floors; row form: curtain 1.47 against 1.33), batching square roots
+  and divisions through Eigen packets (chunks of 256 springs: 15-25% slower with SSE2, 5-10%
+  faster only with `-march=native`), an SSE reciprocal square root with Newton steps, and storing
+  k r per spring instead of k and r (5%).
+- **The floor itself got faster, which raised iteration / floor.** Both substitutions are now
+  gathers read in one direction (`detail::LowerFactor`): the forward one by rows of a
+  row-compressed copy of L, the back one by columns read from their last entry down, each sum split
+  over two accumulator sets. Before, the forward substitution scattered column by column and the
+  back one read each column upward while walking the columns downward, which the prefetcher does
+  not follow. One n x 3 solve, same machine, quiet: curtain 0.75 -> 0.51 ms, 64^2 cloth 0.19 ->
+  0.14 ms, 256^2 cloth 8.8 -> 4.4 ms. The spring pass did not change, so it is now a larger
+  share of the (smaller) iteration: the seed/ours ratio went up from 2.6-3.4x to 3.4-4.1x while
+  iteration / floor went from 1.22-1.39 to 1.33-1.56 (the same quiet machine, before and after).
+  The row copy costs one more copy of L's off-diagonal values and indices (in `factor MiB`).
 - **Chebyshev** (Wang 2015) with the solver's own estimate of rho, delay S = 2 and gamma = 1 (the
   global step is an exact solve) helps on every scene; S = 2 beat S = 5 and 10 on skirt and
   curtain. Its energy check restarts it (back to the plain iterate, momentum dropped) when E rises.
@@ -87,14 +98,22 @@ NOTES = """
   energy, each rejection clears its history, and it is little better than plain: use Chebyshev for
   such violently forced scenes.
 - **float** gains little: the substitution is bound by the index loads and the latency of the
-  scattered updates, not by the bytes of the values.
+  gathers, not by the bytes of the values.
 - **CHOLMOD** (supernodal, METIS or NESDIS) gives no smaller factor than Eigen's AMD on these grids
   and no faster solve once converted to our fused substitution, so the default stays Eigen's
   SimplicialLLT with AMD. COLAMD (meant for unsymmetric LU) fills 10x more; the natural order of a
   grid is a band. CHOLMOD stays opt-in: `include/massspring/storage/cholmod.hpp`
   (`FastMassSpring<System, CholmodCholesky<double>>`), linked only by the project's benchmark.
-- **OpenMP** is not used: the substitutions are sequential, and on these 2 shared cores a threaded
-  spring pass was not measured to gain (not attempted for lack of time; the crossover is not known).
+- **OpenMP, where it pays.** `FastMassSpringOptions::threads = 2` (needs `-fopenmp`; refused
+  without it) runs the two substitutions on two threads: the rows are split along the factor's
+  elimination tree into two unions of whole subtrees, which substitute independently, and a top
+  (the separators above them) that one thread does between two barriers. The result is the same
+  bit for bit (tested). The spring pass stays on one thread. On the 2 cores here the floor gains
+  from 32^2 up (1.2-1.6x) and the whole step 1.1-1.4x; on 8^2 and 16^2 the barriers cost more
+  than they save: **the crossover lies between 16^2 (256 points, 3.4k factor entries) and 32^2
+  (1024 points, 20k entries)**. The default stays 1 thread; the targets above are all one-thread
+  figures. A threaded spring pass (forces per spring, then a per-row gather) measured 1.3x at
+  32^2 and 1.5-1.6x from 64^2 up in a separate experiment, and is not built in.
 - **The curtain** is Liu 2013's: 81 x 81, one diagonal per cell, skip-one bending springs, two
   corners pinned, k = 1000 N/m, Voronoi masses (1 kg/m^2), dt = 1/30, gravity m g (the assignment's
   9.8 N per point would pull its 1.5e-4 kg points ~70 m in a frame). The seed baseline gets the same
@@ -156,6 +175,18 @@ def main(perf):
         fig.savefig(images / "perf_scale.png", dpi=110)
         plt.close(fig)
 
+    scale_line = ""
+    sweep = [r for r in srows if r[0] in ("32", "64", "128", "256", "512")]
+    if len(sweep) >= 2:
+        per = [num(r[8]) for r in sweep]
+        fill = [num(r[5]) / (num(r[1]) * math.log2(num(r[1]))) for r in sweep]
+        scale_line = (
+            f"Across the sweep {sweep[0][0]}^2 to {sweep[-1][0]}^2, ns per iteration / (n log2 n) ranges "
+            f"from {min(per):.3g} to {max(per):.3g}: **{max(per) / min(per):.2f}x** (target <= 1.3x). "
+            f"The factor's own growth, nnz(L) / (n log2 n), ranges from {min(fill):.3g} to "
+            f"{max(fill):.3g} ({max(fill) / min(fill):.2f}x): AMD's fill grows faster than n log n "
+            f"on these grids, and the substitutions read every entry of L twice per iteration.")
+
     peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", million_time)
     elapsed = re.search(r"Elapsed \(wall clock\) time.*: (\S+)", million_time)
     header = re.search(r"Run on \((.*)\)", bench)
@@ -170,9 +201,10 @@ def main(perf):
     def accel_line(scene):
         a = accel.get(scene)
         if not a:
-            return f"| {scene} | - | - | - |"
+            return f"| {scene} | - | - | - | - |"
         return (f"| {scene} | {a['plain error at 50']} | Chebyshev: {a['Chebyshev k']} it., "
-                f"{a['seed/Chebyshev']} | Anderson: {a['Anderson k']} it., {a['seed/Anderson']} |")
+                f"{a['seed/Chebyshev']} | Anderson: {a['Anderson k']} it., {a['seed/Anderson']} | "
+                f"{a.get('seed/that (wall)', '-')} |")
 
     doc = f"""# Performance
 
@@ -185,9 +217,10 @@ scripts/performance.sh --million  # also the 1000 x 1000 cloth (~1.5 GiB, a few 
 
 It keeps the raw output in `out/perf/` and calls `scripts/plot_performance.py` (Debian's
 `/usr/bin/python3` with matplotlib). Last run: {datetime.date.today().isoformat()}, 2 cores of an AMD EPYC
-(2.6 GHz, 1 MiB L2 per core, 32 MiB L3), GCC 12 -O3, Eigen 3.4{", load average " + load.group(1) if load else ", load average 5-7 from other jobs"} (other jobs shared the 2 cores: every figure below is a
-**ratio measured within one run**, from CPU time, which excludes the time other processes held the
-core; absolute milliseconds move by 2x between runs on this machine).
+(2.6 GHz, 1 MiB L2 per core, 32 MiB L3), GCC 12 -O3, Eigen 3.4{", load average " + load.group(1) + " at the start" if load else ""}.
+Every figure below is a **ratio measured within one run**, from CPU time (the wall clock for the
+two-thread figures), which leaves out the time other processes held a core; absolute milliseconds
+move by up to 2x between runs on this shared machine.
 
 ## The three targets of issue 5
 
@@ -209,8 +242,8 @@ and the curtain's time per iteration:
 **3. Time to the step error of 50 plain iterations**, accelerated, against the seed's 50 iterations
 (target >= 15x):
 
-| scene | step error of 50 plain iterations | Chebyshev | Anderson |
-|---|---:|---:|---:|
+| scene | step error of 50 plain iterations | Chebyshev | Anderson | Chebyshev on 2 threads (not a target figure) |
+|---|---:|---:|---:|---:|
 {accel_line("curtain")}
 {accel_line("skirt")}
 
@@ -237,6 +270,12 @@ iterations on its first step, untimed here like any precompute).
 
 {table_text(bench, "Dense against Sparse")}
 
+## Two threads against one (OpenMP, `options.threads = 2`)
+
+Wall clock (CPU time counts one thread only); the crossover is where `1/2` passes 1.
+
+{table_text(bench, "two threads against one")}
+
 ## Factorisations and orderings (`bench_factorization`, exact pins)
 
 Eigen's SimplicialLLT with AMD (the default), COLAMD and the natural order; CHOLMOD (SuiteSparse,
@@ -247,7 +286,11 @@ each factor then solved by the same fused n x 3 substitution.
 
 ## Scale (`bench_scale`: cloth N x N, both diagonals, gravity, exact pins, 10 iterations per step)
 
+The last two columns repeat the iteration with `options.threads = 2`.
+
 {first_table(scale)}
+
+{scale_line}
 
 ![cost against size](images/perf_scale.png)
 
