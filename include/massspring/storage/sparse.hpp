@@ -59,26 +59,8 @@ struct LowerFactor {
   /// L(i, i). Rows must be done in order 0, 1, ..., n - 1; row i of w must be complete (every
   /// addition to it done) when it is; rows below i are not touched.
   void forward_row(Index i, Scalar* w) const {
-    Scalar s0 = w[3 * i], s1 = w[3 * i + 1], s2 = w[3 * i + 2];
-    Scalar t0 = 0, t1 = 0, t2 = 0;
-    const Index end = row_outer[i + 1];
-    Index p = row_outer[i];
-    for (; p + 1 < end; p += 2) {
-      const Scalar* wj = w + 3 * row_inner[p];
-      const Scalar* wk = w + 3 * row_inner[p + 1];
-      const Scalar lj = row_value[p], lk = row_value[p + 1];
-      s0 -= lj * wj[0], s1 -= lj * wj[1], s2 -= lj * wj[2];
-      t0 += lk * wk[0], t1 += lk * wk[1], t2 += lk * wk[2];
-    }
-    if (p < end) {
-      const Scalar* wj = w + 3 * row_inner[p];
-      const Scalar lj = row_value[p];
-      s0 -= lj * wj[0], s1 -= lj * wj[1], s2 -= lj * wj[2];
-    }
-    const Scalar inv = inv_diag[i];
-    w[3 * i] = (s0 - t0) * inv;
-    w[3 * i + 1] = (s1 - t1) * inv;
-    w[3 * i + 2] = (s2 - t2) * inv;
+    const Index first = row_outer[i];
+    solve_row<1>(i, row_inner + first, row_value + first, row_outer[i + 1] - first, w);
   }
 
   /// @brief The forward substitution L z = w in place.
@@ -91,26 +73,8 @@ struct LowerFactor {
   /// be done in order n - 1, ..., 0 (or any order that finishes every row i with L(i, j) != 0
   /// before j).
   void backward_row(Index j, Scalar* w) const {
-    Scalar s0 = w[3 * j], s1 = w[3 * j + 1], s2 = w[3 * j + 2];
-    Scalar t0 = 0, t1 = 0, t2 = 0;
-    const Index first = outer[j] + 1;  // past the diagonal
-    Index p = outer[j + 1] - 1;
-    for (; p > first; p -= 2) {
-      const Scalar* wi = w + 3 * inner[p];
-      const Scalar* wk = w + 3 * inner[p - 1];
-      const Scalar li = value[p], lk = value[p - 1];
-      s0 -= li * wi[0], s1 -= li * wi[1], s2 -= li * wi[2];
-      t0 += lk * wk[0], t1 += lk * wk[1], t2 += lk * wk[2];
-    }
-    if (p == first) {
-      const Scalar* wi = w + 3 * inner[p];
-      const Scalar li = value[p];
-      s0 -= li * wi[0], s1 -= li * wi[1], s2 -= li * wi[2];
-    }
-    const Scalar inv = inv_diag[j];
-    w[3 * j] = (s0 - t0) * inv;
-    w[3 * j + 1] = (s1 - t1) * inv;
-    w[3 * j + 2] = (s2 - t2) * inv;
+    const Index last = outer[j + 1] - 1;  // the diagonal is at outer[j]
+    solve_row<-1>(j, inner + last, value + last, last - outer[j], w);
   }
 
   /// @brief The back substitution L^T u = z in place.
@@ -151,6 +115,32 @@ struct LowerFactor {
 #else
     solve(w);
 #endif
+  }
+
+ private:
+  // w_r = (w_r - sum_k l[k * Step] w_{idx[k * Step]}) / L(r, r) over k = 0 .. count - 1 (Step +1:
+  // the entries read upward, -1: downward), the sum split over two accumulator sets (even and
+  // odd k) so that the additions do not form one chain of dependent latencies.
+  template <int Step>
+  void solve_row(Index r, const Index* idx, const Scalar* l, Index count, Scalar* w) const {
+    Scalar s0 = w[3 * r], s1 = w[3 * r + 1], s2 = w[3 * r + 2];
+    Scalar t0 = 0, t1 = 0, t2 = 0;
+    for (; count >= 2; count -= 2, idx += 2 * Step, l += 2 * Step) {
+      const Scalar* wa = w + 3 * idx[0];
+      const Scalar* wb = w + 3 * idx[Step];
+      const Scalar la = l[0], lb = l[Step];
+      s0 -= la * wa[0], s1 -= la * wa[1], s2 -= la * wa[2];
+      t0 += lb * wb[0], t1 += lb * wb[1], t2 += lb * wb[2];
+    }
+    if (count == 1) {
+      const Scalar* wa = w + 3 * idx[0];
+      const Scalar la = l[0];
+      s0 -= la * wa[0], s1 -= la * wa[1], s2 -= la * wa[2];
+    }
+    const Scalar inv = inv_diag[r];
+    w[3 * r] = (s0 - t0) * inv;
+    w[3 * r + 1] = (s1 - t1) * inv;
+    w[3 * r + 2] = (s2 - t2) * inv;
   }
 };
 
