@@ -555,33 +555,29 @@ void register_benchmarks() {
     if (s.dense)
       reg(repeated, "Floor", "Dense",
           [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->dense, kSeedLike); });
-    if (s.accelerate && s.acceleration.chebyshev > 0) {
-      const int k = s.acceleration.chebyshev;
-      reg(repeated, "Step", "Chebyshev", [sc, k](benchmark::State& st) {
-        bm_step(
-            st, *sc, *sc->sparse,
-            [k](auto& o) {
-              kChebyshev(o);
-              o.iterations = k;
-            },
-            sc->warm.get(), "Sparse, Chebyshev: one step to the error of 50 plain iterations");
-      });
-    }
+      // Chebyshev to the error of 50 plain iterations; on two threads too when built with OpenMP.
 #ifdef _OPENMP
-    if (s.accelerate && s.acceleration.chebyshev > 0) {
-      const int k = s.acceleration.chebyshev;
-      reg(repeated, "Step", "ChebyshevThreads2", [sc, k](benchmark::State& st) {
-        bm_step(
-            st, *sc, *sc->sparse,
-            [k](auto& o) {
-              kChebyshev(o);
-              o.iterations = k;
-              o.threads = 2;
-            },
-            sc->warm.get(), "Sparse, Chebyshev, two threads: one step to the error of 50 plain");
-      });
-    }
+    constexpr int kMostThreads = 2;
+#else
+    constexpr int kMostThreads = 1;
 #endif
+    for (int threads = 1; s.accelerate && s.acceleration.chebyshev > 0 && threads <= kMostThreads;
+         ++threads) {
+      const int k = s.acceleration.chebyshev;
+      reg(repeated, "Step", threads == 1 ? "Chebyshev" : "ChebyshevThreads2",
+          [sc, k, threads](benchmark::State& st) {
+            bm_step(
+                st, *sc, *sc->sparse,
+                [k, threads](auto& o) {
+                  kChebyshev(o);
+                  o.iterations = k;
+                  o.threads = threads;
+                },
+                sc->warm.get(),
+                threads == 1 ? "Sparse, Chebyshev: one step to the error of 50 plain iterations"
+                             : "Sparse, Chebyshev, two threads: one step to the error of 50 plain");
+          });
+    }
     if (s.accelerate && s.acceleration.anderson > 0) {
       const int k = s.acceleration.anderson;
       reg(repeated, "Step", "Anderson", [sc, k](benchmark::State& st) {
