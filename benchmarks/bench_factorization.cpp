@@ -1,5 +1,7 @@
-// Factorisations of FastMassSpring's Q compared: Eigen's SimplicialLLT with AMD, COLAMD and the
-// natural ordering (SparseCholesky<Scalar, Ordering>), and, when built with CHOLMOD
+// Factorisations of FastMassSpring's Q compared: Eigen's SimplicialLLT with AMD, geometric nested
+// dissection of the rest positions (massspring::nested_dissection; its time counted in the
+// factorisation's), COLAMD and the natural ordering (SparseCholesky<Scalar, Ordering>), and, when
+// built with CHOLMOD
 // (MASSSPRING_HAS_CHOLMOD), CHOLMOD's supernodal factorisation with its own choice, AMD, METIS and
 // NESDIS (CholmodCholesky). For each: nnz(L), factorisation time (compute(): ordering, symbolic,
 // numeric; median of 3) and the time of one fused n x 3 solve with that factor (median of 21), on
@@ -36,11 +38,11 @@ double median_ms(int repetitions, const std::function<void()>& f) {
   return t[t.size() / 2];
 }
 
-template <class Cholesky>
+template <class Cholesky, class Compute>
 void measure(const std::string& scene, const char* name, const Matrix& q, Cholesky& llt,
-             int solve_repetitions) {
+             int solve_repetitions, Compute compute) {
   bool ok = true;
-  const double factor_ms = median_ms(3, [&] { ok = llt.compute(q) && ok; });
+  const double factor_ms = median_ms(3, [&] { ok = compute() && ok; });
   if (!ok) {
     std::printf("| %s | %s | failed | | |\n", scene.c_str(), name);
     return;
@@ -52,15 +54,31 @@ void measure(const std::string& scene, const char* name, const Matrix& q, Choles
   std::fflush(stdout);
 }
 
+template <class Cholesky>
+void measure(const std::string& scene, const char* name, const Matrix& q, Cholesky& llt,
+             int solve_repetitions) {
+  measure(scene, name, q, llt, solve_repetitions, [&] { return llt.compute(q); });
+}
+
 void compare(const std::string& scene, const massspring::ClothOptions& o) {
   const System system = massspring::make_system<System>(massspring::make_cloth(o));
   massspring::FastMassSpring<System> solver;
+  solver.options.ordering = massspring::FillOrdering::Solver;
   solver.precompute(system, 1.0 / 30);
   const Matrix& q = solver.system_matrix();
   const int reps = q.rows() > 100000 ? 5 : 21;
   {
     massspring::SparseCholesky<double, Eigen::AMDOrdering<int>> llt;
-    measure(scene, "Eigen SimplicialLLT, AMD (default)", q, llt, reps);
+    measure(scene, "Eigen SimplicialLLT, AMD", q, llt, reps);
+  }
+  {
+    Eigen::Matrix<double, Eigen::Dynamic, 3> xyz(q.rows(), 3);
+    for (Eigen::Index r = 0; r < q.rows(); ++r)
+      xyz.row(r) = system.rest_positions().row(solver.free_points()[std::size_t(r)]);
+    massspring::SparseCholesky<double> llt;
+    measure(scene, "Eigen SimplicialLLT, nested dissection", q, llt, reps, [&] {
+      return llt.compute(q, massspring::nested_dissection(xyz, massspring::graph_of(q)));
+    });
   }
   if (q.rows() <= 70000) {  // COLAMD (meant for LU) fills ~10x more: 43 s already at 256^2
     massspring::SparseCholesky<double, Eigen::COLAMDOrdering<int>> llt;

@@ -99,10 +99,24 @@ NOTES = """
   such violently forced scenes.
 - **float** gains little: the substitution is bound by the index loads and the latency of the
   gathers, not by the bytes of the values.
-- **CHOLMOD** (supernodal, METIS or NESDIS) gives no smaller factor than Eigen's AMD on these grids
-  and no faster solve once converted to our fused substitution, so the default stays Eigen's
-  SimplicialLLT with AMD. COLAMD (meant for unsymmetric LU) fills 10x more; the natural order of a
-  grid is a band. CHOLMOD stays opt-in: `include/massspring/storage/cholmod.hpp`
+- **The order of elimination.** `FillOrdering::Auto` (the default) counts the factor's nonzeros
+  for two orders before factorising (elimination tree and row subtrees, `cholesky_nonzeros`) and
+  factorises with the smaller: Eigen's AMD, or geometric nested dissection of the rest positions
+  (`nested_dissection`: the points cut at the median along one of nine directions, the axes and
+  the diagonals of the coordinate planes, whichever one-sided boundary is smallest; halves first,
+  separator last). The diagonals matter for the curtain, whose one diagonal per cell and skip-one
+  springs make a straight cut two lines wide. Counted (helper experiment and `bench_factorization`):
+  on cloth with both diagonals nested dissection is within 2% of AMD up to 81^2 and 4-15% below
+  it from 128^2 (512^2: 12.7M against 14.9M entries); on the curtain's pattern it is 6% below at
+  81^2, 17% at 128^2, 25% at 256^2 and 37% at 512^2. The substitutions' time follows nnz(L)
+  within a few percent. Ordering and counting cost a few tens of percent of the factorisation
+  at small sizes, less than they save at large ones. METIS (Eigen's MetisOrdering, counted in the
+  same experiment) fills 4-11% less than AMD from 128^2 on cloth but more than nested dissection
+  of the positions, and is not a dependency of the project.
+- **CHOLMOD** (supernodal, METIS or NESDIS) gives no faster solve once converted to our fused
+  substitution (its nnz(L) counts the zeros its supernodes store), so it is not the default.
+  COLAMD (meant for unsymmetric LU) fills 10x more; the natural order of a grid is a band.
+  CHOLMOD stays opt-in: `include/massspring/storage/cholmod.hpp`
   (`FastMassSpring<System, CholmodCholesky<double>>`), linked only by the project's benchmark.
 - **OpenMP, where it pays.** `FastMassSpringOptions::threads = 2` (needs `-fopenmp`; refused
   without it) runs the two substitutions on two threads: the rows are split along the factor's
@@ -184,8 +198,10 @@ def main(perf):
             f"Across the sweep {sweep[0][0]}^2 to {sweep[-1][0]}^2, ns per iteration / (n log2 n) ranges "
             f"from {min(per):.3g} to {max(per):.3g}: **{max(per) / min(per):.2f}x** (target <= 1.3x). "
             f"The factor's own growth, nnz(L) / (n log2 n), ranges from {min(fill):.3g} to "
-            f"{max(fill):.3g} ({max(fill) / min(fill):.2f}x): AMD's fill grows faster than n log n "
-            f"on these grids, and the substitutions read every entry of L twice per iteration.")
+            f"{max(fill):.3g} ({max(fill) / min(fill):.2f}x), with the order `FillOrdering::Auto` takes "
+            f"(AMD up to about 81^2, nested dissection above): the fill of both grows faster than "
+            f"n log n over these sizes, and the substitutions read every entry of L twice per "
+            f"iteration.")
 
     peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", million_time)
     elapsed = re.search(r"Elapsed \(wall clock\) time.*: (\S+)", million_time)
@@ -278,9 +294,11 @@ Wall clock (CPU time counts one thread only); the crossover is where `1/2` passe
 
 ## Factorisations and orderings (`bench_factorization`, exact pins)
 
-Eigen's SimplicialLLT with AMD (the default), COLAMD and the natural order; CHOLMOD (SuiteSparse,
-optional, found by `cmake/FindCHOLMOD.cmake`) supernodal with its own choice, AMD, METIS and NESDIS,
-each factor then solved by the same fused n x 3 substitution.
+Eigen's SimplicialLLT with AMD, with nested dissection of the rest positions (its ordering time
+included; the default `FillOrdering::Auto` takes whichever of these two has fewer nonzeros), COLAMD
+and the natural order; CHOLMOD (SuiteSparse, optional, found by `cmake/FindCHOLMOD.cmake`)
+supernodal with its own choice, AMD, METIS and NESDIS, each factor then solved by the same fused
+n x 3 substitution.
 
 {first_table(factor)}
 

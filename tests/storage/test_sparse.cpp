@@ -1,8 +1,10 @@
-// storage/sparse.hpp: the fused n x 3 solve against Eigen's own SimplicialLLT::solve, and no
-// allocation per solve.
+// storage/sparse.hpp: the fused n x 3 solve against Eigen's own SimplicialLLT::solve, the factor
+// in the Ordering's and in a given order, and no allocation per solve.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <massspring/storage/sparse.hpp>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -44,11 +46,64 @@ TEST_CASE_TEMPLATE("SparseCholesky::solve equals Eigen's SimplicialLLT::solve", 
   const massspring::Points<Scalar> b = massspring::Points<Scalar>::Random(n, 3);
   massspring::Points<Scalar> x(n, 3);
   llt.solve(b, x);
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, 3> expected = llt.factorization().solve(b);
+  const Eigen::SimplicialLLT<Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int>> eigen(q);
+  REQUIRE(eigen.info() == Eigen::Success);
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, 3> expected = eigen.solve(b);
   const double tol = std::is_same_v<Scalar, float> ? 1e-5 : 1e-13;
   CHECK((x - expected).norm() <= tol * expected.norm());
   // and it solves the system itself
   CHECK((q * x - b).norm() <= tol * 10 * b.norm());
+}
+
+TEST_CASE("SparseCholesky: its own order is Eigen's AMD, with Eigen's factor") {
+  const auto q = random_spd<double>(250, 900, 5);
+  massspring::SparseCholesky<double> ours;
+  REQUIRE(ours.compute(q));
+  const Eigen::SimplicialLLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>> eigen(q);
+  REQUIRE(eigen.info() == Eigen::Success);
+  CHECK(ours.permutation() == eigen.permutationP().indices());
+  const Eigen::SparseMatrix<double> expected = eigen.matrixL();
+  const Eigen::SparseMatrix<double> got = ours.factor();
+  CHECK(got.nonZeros() == expected.nonZeros());
+  // The same entries; the sums within a column may be taken in another order (Eigen permutes Q
+  // itself, here it arrives permuted), so equal to rounding.
+  CHECK(Eigen::MatrixXd(got - expected).norm() <= 1e-14 * Eigen::MatrixXd(expected).norm());
+}
+
+TEST_CASE("SparseCholesky with a given order: P Q P^T = L L^T in that order, solves Q") {
+  const int n = 240;
+  const auto q = random_spd<double>(n, 800, 9);
+  std::vector<int> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(4));
+  massspring::SparseCholesky<double> llt;
+  REQUIRE(llt.compute(q, order));
+  for (int k = 0; k < n; ++k) CHECK(llt.permutation()(order[std::size_t(k)]) == k);
+  // Independent: L L^T against Q permuted densely (row order[k] of Q is row k).
+  const Eigen::MatrixXd dq(q);
+  Eigen::MatrixXd pqp(n, n);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) pqp(a, b) = dq(order[std::size_t(a)], order[std::size_t(b)]);
+  const Eigen::MatrixXd l(llt.factor());
+  CHECK((l * l.transpose() - pqp).norm() <= 1e-13 * pqp.norm());
+  CHECK(llt.factor_nonzeros() ==
+        Eigen::Index(massspring::cholesky_nonzeros(massspring::graph_of(q), order)));
+  const massspring::Points<double> b = massspring::Points<double>::Random(n, 3);
+  massspring::Points<double> x(n, 3);
+  llt.solve(b, x);
+  CHECK((q * x - b).norm() <= 1e-12 * b.norm());
+}
+
+TEST_CASE("SparseCholesky refuses an order that is not a permutation of Q's rows") {
+  const auto q = random_spd<double>(5, 8, 1);
+  massspring::SparseCholesky<double> llt;
+  CHECK_THROWS_WITH_AS(llt.compute(q, {0, 1, 2, 3}),
+                       "SparseCholesky: the order has 4 entries for 5 unknowns", massspring::Error);
+  CHECK_THROWS_WITH_AS(llt.compute(q, {0, 1, 2, 3, 3}),
+                       "SparseCholesky: the order is not a permutation of 0 .. 4 (entry 4 is 3)",
+                       massspring::Error);
+  CHECK_THROWS_WITH_AS(llt.compute(q, {0, 1, 2, 3, 5}), doctest::Contains("entry 4 is 5"),
+                       massspring::Error);
 }
 
 TEST_CASE("SparseCholesky::solve allocates nothing and may solve in place") {

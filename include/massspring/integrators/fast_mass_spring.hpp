@@ -18,6 +18,7 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/springs.hpp"
 #include "massspring/integrators/step_report.hpp"
+#include "massspring/storage/nested_dissection.hpp"
 #include "massspring/system/detail/validate.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
@@ -59,8 +60,20 @@ enum class Acceleration {
   Anderson,
 };
 
-/// @brief Options of FastMassSpring. Changing `pins` or `penalty_weight` makes the next step
-/// factorise again; the others take effect at the next step for free.
+/// @brief The elimination order of Q's Cholesky factorisation (Sparse storage).
+enum class FillOrdering {
+  /// Nested dissection of the rest positions when its factor has fewer nonzeros than the
+  /// Cholesky type's own order (both counted symbolically before factorising), else the latter.
+  /// On cloth grids nested dissection wins from about 80 x 80 points up (docs/performance.md).
+  Auto,
+  /// The Cholesky type's own ordering: Eigen's AMD for the default SparseCholesky.
+  Solver,
+  /// Geometric nested dissection of the rest positions (massspring::nested_dissection).
+  NestedDissection,
+};
+
+/// @brief Options of FastMassSpring. Changing `pins`, `penalty_weight` or `ordering` makes the
+/// next step factorise again; the others take effect at the next step for free.
 template <class Scalar>
 struct FastMassSpringOptions {
   /// @brief Most local-global iterations (global solves) per step (>= 1). Default 50, as the
@@ -110,6 +123,11 @@ struct FastMassSpringOptions {
   /// crossover measured on 2 cores. A change takes effect at the next step (planning the split
   /// allocates, once).
   int threads = 1;
+  /// @brief The factor's elimination order (default Auto: the one with fewer nonzeros of nested
+  /// dissection and the Cholesky type's own). Sparse storage only: with a Cholesky that takes no
+  /// given order (Dense, CHOLMOD) Auto is its own order and NestedDissection is refused. The
+  /// order changes rounding only, not the solution.
+  FillOrdering ordering = FillOrdering::Auto;
 };
 
 /// @brief Local-global ("fast mass-spring") integrator of Liu et al. 2013.
@@ -179,7 +197,8 @@ class FastMassSpring {
     check_options();
     StepReport report;
     if (system.revision() != revision_ || system.num_points() != n_ || options.pins != pins_ ||
-        (pins_ == PinMode::Penalty && options.penalty_weight != weight_)) {
+        (pins_ == PinMode::Penalty && options.penalty_weight != weight_) ||
+        options.ordering != ordering_) {
       build(system);
       report.refactorized = true;
     }
@@ -282,6 +301,12 @@ class FastMassSpring {
     if (options.threads < 1)
       throw Error(
           detail::message("FastMassSpring: options.threads must be >= 1, got ", options.threads));
+    if constexpr (!has_ordered_compute<Cholesky>::value) {
+      if (options.ordering == FillOrdering::NestedDissection)
+        throw Error(
+            "FastMassSpring: options.ordering = NestedDissection: this storage's Cholesky takes no "
+            "given elimination order (use Sparse storage)");
+    }
     if constexpr (!has_threads<Cholesky>::value) {
       if (options.threads > 1)
         throw Error(detail::message("FastMassSpring: options.threads = ", options.threads,
@@ -295,6 +320,34 @@ class FastMassSpring {
   template <class C>
   struct has_threads<C, std::void_t<decltype(std::declval<C&>().set_threads(1))>> : std::true_type {
   };
+
+  template <class C, class = void>
+  struct has_ordered_compute : std::false_type {};
+  template <class C>
+  struct has_ordered_compute<
+      C, std::void_t<decltype(std::declval<C&>().compute(std::declval<const Matrix&>(),
+                                                         std::declval<const std::vector<int>&>()))>>
+      : std::true_type {};
+
+  // Factorises Q in the order options.ordering asks for (see FillOrdering).
+  bool factorise(const System& system) {
+    if constexpr (has_ordered_compute<Cholesky>::value) {
+      if (options.ordering != FillOrdering::Solver) {
+        Eigen::Matrix<double, Eigen::Dynamic, 3> xyz(nr_, 3);
+        for (int r = 0; r < nr_; ++r)
+          xyz.row(r) = system.rest_positions().row(free_[std::size_t(r)]).template cast<double>();
+        const Graph graph = graph_of(q_);
+        std::vector<int> order = nested_dissection(xyz, graph);
+        if (options.ordering == FillOrdering::Auto) {
+          std::vector<int> own = Cholesky::ordering_of(q_);
+          if (cholesky_nonzeros(graph, own) <= cholesky_nonzeros(graph, order)) order.swap(own);
+        }
+        return llt_.compute(q_, order);
+      }
+    }
+    (void)system;
+    return llt_.compute(q_);
+  }
 
   // The solver's threads to the options' (SparseCholesky::set_threads checks for OpenMP).
   void apply_threads() {
@@ -359,7 +412,8 @@ class FastMassSpring {
     q_ = Traits::from_triplets(nr_, nr_, t);
     std::vector<Triplet>().swap(t);
     apply_threads();
-    if (!llt_.compute(q_))
+    ordering_ = options.ordering;
+    if (!factorise(system))
       throw Error(
           detail::message("FastMassSpring: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
                           " is not numerically positive definite (dt = ", dt_,
@@ -956,6 +1010,7 @@ class FastMassSpring {
   Scalar weight_ = 0;
   Scalar rho_estimate_ = 0;
   PinMode pins_ = PinMode::Exact;
+  FillOrdering ordering_ = FillOrdering::Auto;
   std::uint64_t revision_ = 0;
   int n_ = 0, nr_ = 0, nx_ = 0;
   std::size_t rejections_ = 0;

@@ -16,6 +16,7 @@
 #endif
 
 #include "massspring/error.hpp"
+#include "massspring/storage/nested_dissection.hpp"
 #include "massspring/storage/tags.hpp"
 #include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
@@ -294,6 +295,10 @@ struct LowerFactorRows {
 ///   `permutation()[i]` of w is row i of Q's unknowns): the floor of a local-global iteration that
 ///   keeps its iterate in that order.
 ///
+/// The elimination order is the Ordering's (Eigen's AMD by default) or one given to compute()
+/// (e.g. nested_dissection(), storage/nested_dissection.hpp); either way Q is permuted here and
+/// Eigen's SimplicialLLT factorises the result in its natural order.
+///
 /// @tparam Ordering_ an Eigen ordering (Eigen::AMDOrdering<int>, Eigen::COLAMDOrdering<int>,
 /// Eigen::NaturalOrdering<int>, Eigen::MetisOrdering<int>)
 template <class Scalar_, class Ordering_ = Eigen::AMDOrdering<int>>
@@ -302,19 +307,45 @@ class SparseCholesky {
   using Scalar = Scalar_;
   using Ordering = Ordering_;
   using Matrix = Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int>;
-  using Factorization = Eigen::SimplicialLLT<Matrix, Eigen::Lower, Ordering>;
+  /// @brief The factorisation of P Q P^T (already permuted: natural order).
+  using Factorization = Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::NaturalOrdering<int>>;
+
+  /// @brief The elimination order the Ordering gives Q (order[k]: Q's row eliminated k-th), as
+  /// Eigen's SimplicialLLT computes it (on the full symmetric pattern of Q's lower triangle).
+  [[nodiscard]] static std::vector<int> ordering_of(const Matrix& q) {
+    const int n = int(q.rows());
+    std::vector<int> order(static_cast<std::size_t>(n));
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+    {
+      Matrix full;
+      full = q.template selfadjointView<Eigen::Lower>();
+      Ordering()(full, inverse);
+    }
+    for (int k = 0; k < n; ++k)
+      order[std::size_t(k)] = inverse.size() > 0 ? inverse.indices()(k) : k;
+    return order;
+  }
 
   /// @brief Symbolic analysis (ordering, pattern) and numeric factorisation of Q (lower triangle
-  /// read). Allocates; call it once per change of Q.
+  /// read), in the Ordering's order. Allocates; call it once per change of Q.
   /// @return false when Q is not numerically positive definite.
-  bool compute(const Matrix& q) {
-    llt_.compute(q);
+  bool compute(const Matrix& q) { return compute(q, ordering_of(q)); }
+
+  /// @brief As compute(q), eliminating Q's rows in `order` (order[k]: the row eliminated k-th).
+  /// @throws Error when `order` is not a permutation of Q's rows.
+  bool compute(const Matrix& q, const std::vector<int>& order) {
+    const std::vector<int> position = detail::inverse_order(order, int(q.rows()), "SparseCholesky");
+    perm_ = Eigen::Map<const Eigen::VectorXi>(position.data(), Eigen::Index(position.size()));
+    {
+      Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p(perm_);
+      Matrix permuted(q.rows(), q.cols());
+      permuted.template selfadjointView<Eigen::Lower>() =
+          q.template selfadjointView<Eigen::Lower>().twistedBy(p);
+      llt_.compute(permuted);
+    }
     work_.resize(q.rows(), 3);
     ok_ = llt_.info() == Eigen::Success;
     if (ok_) {
-      const auto& p = llt_.permutationP();
-      perm_ =
-          p.size() > 0 ? p.indices() : Eigen::VectorXi::LinSpaced(q.rows(), 0, int(q.rows()) - 1);
       const Matrix& l = factor();
       ok_ = rows_.build(int(l.cols()), l.outerIndexPtr(), l.innerIndexPtr(), l.valuePtr());
       if (ok_ && threads_ > 1)
@@ -337,7 +368,7 @@ class SparseCholesky {
   }
   /// @brief The factor L of P Q P^T (column-compressed, lower, diagonal first in each column).
   [[nodiscard]] const Matrix& factor() const { return llt_.matrixL().nestedExpression(); }
-  /// @brief The underlying Eigen factorisation.
+  /// @brief The underlying Eigen factorisation, of P Q P^T (permutation() gives P).
   [[nodiscard]] const Factorization& factorization() const { return llt_; }
   /// @brief Row i of Q's unknowns is row permutation()[i] of the factor's order.
   [[nodiscard]] const Eigen::VectorXi& permutation() const { return perm_; }
