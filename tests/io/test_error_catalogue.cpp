@@ -685,6 +685,36 @@ TEST_CASE("I2 step before precompute") {
         "FastMassSpring: step() before precompute()");
 }
 
+TEST_CASE("I3 an elimination order that cannot be used") {
+  // FastMassSpring's options.ordering on a Cholesky that takes no order; SparseCholesky given a
+  // non-permutation; nested_dissection given coordinates that do not fit.
+  massspring::MassSpringSystem<double, massspring::Dense> dense(row3(), edges({{0, 1}, {1, 2}}),
+                                                                1.0, 10.0);
+  massspring::FastMassSpring<decltype(dense)> solver;
+  solver.options.ordering = massspring::FillOrdering::NestedDissection;
+  CHECK(error_of([&] { solver.precompute(dense, 0.1); }) ==
+        "FastMassSpring: options.ordering = NestedDissection: this storage's Cholesky takes no "
+        "given elimination order (use Sparse storage)");
+  System s = chain3();
+  massspring::FastMassSpring<System> sparse;
+  sparse.precompute(s, 0.1);
+  massspring::SparseCholesky<double> llt;
+  CHECK(error_of([&] {
+          llt.compute(sparse.system_matrix(), {0, 2, 2});
+        }) == "SparseCholesky: the order is not a permutation of 0 .. 2 (entry 2 is 2)");
+  CHECK(error_of([&] {
+          llt.compute(sparse.system_matrix(), {0, 1});
+        }) == "SparseCholesky: the order has 2 entries for 3 unknowns");
+  const massspring::Graph g = massspring::graph_of(sparse.system_matrix());
+  Eigen::Matrix<double, Eigen::Dynamic, 3> xyz = s.rest_positions().topRows(2);
+  CHECK(error_of([&] { (void)massspring::nested_dissection(xyz, g); }) ==
+        "nested_dissection: coordinates are 2 x 3 for a graph of 3 vertices (need 3 x 3)");
+  xyz = s.rest_positions();
+  xyz(1, 0) = kNaN;
+  CHECK(error_of([&] { (void)massspring::nested_dissection(xyz, g); }) ==
+        "nested_dissection: coordinate (1, 0) is not finite: nan");
+}
+
 // ---- the fuzzers' regression inputs ---------------------------------------------------------
 
 // Every file in tests/data/fuzz/<target>/ once crashed a fuzz target (fuzz/); each must now end

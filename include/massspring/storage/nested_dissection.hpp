@@ -134,6 +134,14 @@ class NestedDissection {
         side_(std::size_t(g.size()), 0),
         key_(std::size_t(g.size()), 0.0) {}
 
+  // Directions along an axis on which every point lies at one coordinate (a flat cloth) repeat
+  // others, or separate nothing: skipped.
+  void flat_axes(const std::array<bool, 3>& flat) {
+    for (std::size_t d = 0; d < 9; ++d)
+      for (std::size_t c = 0; c < 3; ++c)
+        if (flat[c] && kDirections[d][c] != 0) use_[d] = false;
+  }
+
   std::vector<int> run() {
     std::vector<int> vertices(std::size_t(g_.size()));
     std::iota(vertices.begin(), vertices.end(), 0);
@@ -182,20 +190,22 @@ class NestedDissection {
     return true;
   }
 
-  // Vertices of side s (of the part `stamp`) with a neighbour on the other side.
-  int boundary(const int* v, int count, int stamp, int s, bool mark) {
-    int size = 0;
+  // How many vertices of each side (of the part `stamp`) have a neighbour on the other side; with
+  // mark >= 0, those of side `mark` become the separator (side 2).
+  std::array<int, 2> boundary(const int* v, int count, int stamp, int mark = -1) {
+    std::array<int, 2> size{0, 0};
     for (int k = 0; k < count; ++k) {
       const int a = v[k];
-      if (side_[std::size_t(a)] != s) continue;
+      const int s = side_[std::size_t(a)];
+      if (s > 1 || (mark >= 0 && s != mark)) continue;
       bool cut = false;
       for (int q = g_.start[std::size_t(a)]; q < g_.start[std::size_t(a) + 1] && !cut; ++q) {
         const int b = g_.neighbours[std::size_t(q)];
         cut = part_[std::size_t(b)] == stamp && side_[std::size_t(b)] == 1 - s;
       }
       if (cut) {
-        ++size;
-        if (mark) side_[std::size_t(a)] = 2;  // the separator
+        ++size[std::size_t(s)];
+        if (mark >= 0) side_[std::size_t(a)] = 2;
       }
     }
     return size;
@@ -212,11 +222,12 @@ class NestedDissection {
     int best = -1, best_side = 0, best_size = count + 1;
     for (int d = 0; d <= 9; ++d) {
       if (d == 9 && best >= 0) break;  // by index only when no direction separates the points
+      if (d < 9 && !use_[std::size_t(d)]) continue;
       if (!split(v, count, d, count / 2)) continue;
-      for (int s = 0; s < 2; ++s) {
-        const int size = boundary(v, count, stamp, s, false);
-        if (size < best_size) best = d, best_side = s, best_size = size;
-      }
+      const std::array<int, 2> size = boundary(v, count, stamp);
+      for (int s = 0; s < 2; ++s)
+        if (size[std::size_t(s)] < best_size)
+          best = d, best_side = s, best_size = size[std::size_t(s)];
     }
     // The cut again; with balance_, moved by half the separator so that the two parts left are
     // of one size.
@@ -225,7 +236,7 @@ class NestedDissection {
                      : best_side == 0 ? (count + best_size) / 2
                                       : (count - best_size) / 2;
     split(v, count, best, std::clamp(half, 1, count - 1));
-    best_size = boundary(v, count, stamp, best_side, true);
+    best_size = boundary(v, count, stamp, best_side)[std::size_t(best_side)];
     // v = [side 0 | side 1 | separator], each in its original relative order.
     int* out = scratch_.data();
     int n = 0;
@@ -246,6 +257,7 @@ class NestedDissection {
   const Graph& g_;
   int leaf_;
   bool balance_;
+  std::array<bool, 9> use_{true, true, true, true, true, true, true, true, true};
   int stamps_ = 0;
   std::vector<int> part_;    // stamp of the part being split that holds the vertex
   std::vector<int> side_;    // 0, 1: side of the current split; 2: separator
@@ -318,8 +330,17 @@ std::vector<int> nested_dissection(const Eigen::MatrixBase<Derived>& coordinates
   // and the cut moved by half the separator (two parts of one size). Neither wins everywhere
   // (the first on grids with skip-one springs, the second on plain grids); the one with the
   // smaller factor is returned.
-  std::vector<int> median = detail::NestedDissection(xyz, g, options.leaf_size, false).run();
-  std::vector<int> balanced = detail::NestedDissection(xyz, g, options.leaf_size, true).run();
+  std::array<bool, 3> flat{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    flat[c] = true;
+    for (const auto& p : xyz) flat[c] = flat[c] && p[c] == xyz.front()[c];
+  }
+  detail::NestedDissection by_median(xyz, g, options.leaf_size, false);
+  detail::NestedDissection by_balance(xyz, g, options.leaf_size, true);
+  by_median.flat_axes(flat);
+  by_balance.flat_axes(flat);
+  std::vector<int> median = by_median.run();
+  std::vector<int> balanced = by_balance.run();
   return cholesky_nonzeros(g, balanced) < cholesky_nonzeros(g, median) ? balanced : median;
 }
 
