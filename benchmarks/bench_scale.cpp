@@ -10,8 +10,11 @@
 //   bench_scale                          # the sweep 32, 64, 128, 256, 512
 //   bench_scale --grid 1000 --frames 10  # one grid (1000 x 1000: a million points)
 //
-// Timing is wall clock (std::chrono::steady_clock), the median over the frames; this is a plain
-// program, not Google Benchmark, because one 1000 x 1000 precompute takes tens of seconds.
+// Timing is wall clock (std::chrono::steady_clock), the median over the frames: at least
+// `--frames` of them and at least `--min-time` seconds of them, so that the small grids (a step of
+// 32 x 32 takes half a millisecond) are timed over a thousand steps, not five, and a burst of
+// outside load cannot move their median. This is a plain program, not Google Benchmark, because
+// one 1000 x 1000 precompute takes tens of seconds.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -43,7 +46,7 @@ double peak_rss_mib() {
   return double(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
 
-void run(int n, int frames, int iterations) {
+void run(int n, int frames, double min_time, int iterations) {
   const auto t_scene = Clock::now();
   massspring::ClothOptions o;
   o.columns = o.rows = n;
@@ -64,7 +67,8 @@ void run(int n, int frames, int iterations) {
   // Median wall-clock ms per iteration over the frames.
   const auto time_frames = [&] {
     std::vector<double> per_iteration;
-    for (int frame = 0; frame < frames; ++frame) {
+    const auto start = Clock::now();
+    for (int frame = 0; frame < frames || seconds_since(start) < min_time; ++frame) {
       const auto t0 = Clock::now();
       const massspring::StepReport r = solver.step(system);
       per_iteration.push_back(seconds_since(t0) / std::max(r.iterations, 1));
@@ -96,17 +100,21 @@ void run(int n, int frames, int iterations) {
 int main(int argc, char** argv) {
   std::vector<int> grids = {32, 64, 128, 256, 512};
   int frames = 5, iterations = 10;
+  double min_time = 1.0;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--grid" && a + 1 < argc) {
       grids = {std::atoi(argv[++a])};
     } else if (arg == "--frames" && a + 1 < argc) {
       frames = std::atoi(argv[++a]);
+    } else if (arg == "--min-time" && a + 1 < argc) {
+      min_time = std::atof(argv[++a]);
     } else if (arg == "--iterations" && a + 1 < argc) {
       iterations = std::atoi(argv[++a]);
     } else {
       std::fprintf(stderr,
-                   "usage: bench_scale [--grid N] [--frames F (5)] [--iterations K (10)]\n");
+                   "usage: bench_scale [--grid N] [--frames F (5)] [--min-time S (1.0)] "
+                   "[--iterations K (10)]\n");
       return 2;
     }
   }
@@ -115,6 +123,6 @@ int main(int argc, char** argv) {
       "ns/iteration / (n log2 n) | peak RSS MiB | finite | ms/iteration, 2 threads | 1 thread / "
       "2 |\n"
       "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
-  for (const int n : grids) run(n, frames, iterations);
+  for (const int n : grids) run(n, frames, min_time, iterations);
   return 0;
 }
