@@ -337,10 +337,11 @@ class FastMassSpring {
         for (int r = 0; r < nr_; ++r)
           xyz.row(r) = system.rest_positions().row(free_[std::size_t(r)]).template cast<double>();
         const Graph graph = graph_of(q_);
-        std::vector<int> order = nested_dissection(xyz, graph);
+        std::size_t dissected = 0;  // nnz(L) in that order
+        std::vector<int> order = nested_dissection(xyz, graph, {}, &dissected);
         if (options.ordering == FillOrdering::Auto) {
           std::vector<int> own = Cholesky::ordering_of(q_);
-          if (cholesky_nonzeros(graph, own) <= cholesky_nonzeros(graph, order)) order.swap(own);
+          if (cholesky_nonzeros(graph, own) <= dissected) order.swap(own);
         }
         return llt_.compute(q_, order);
       }

@@ -99,11 +99,14 @@ struct NestedDissectionOptions {
 /// description).
 /// @param coordinates n x 3 positions of the vertices, row v for vertex v (any unit: each axis is
 /// measured in the median length of the edges along it); points at one place are split by index
+/// @param nonzeros when not null, receives cholesky_nonzeros(g, order) of the order returned
+/// (counted anyway, to choose between two variants)
 /// @return order[k]: the vertex eliminated k-th, a permutation of 0 .. n - 1
 /// @throws Error when the sizes disagree, a coordinate is not finite or leaf_size < 1.
 template <class Derived>
 std::vector<int> nested_dissection(const Eigen::MatrixBase<Derived>& coordinates, const Graph& g,
-                                   const NestedDissectionOptions& options = {});
+                                   const NestedDissectionOptions& options = {},
+                                   std::size_t* nonzeros = nullptr);
 
 namespace detail {
 
@@ -290,7 +293,7 @@ inline std::size_t cholesky_nonzeros(const Graph& g, const std::vector<int>& ord
 
 template <class Derived>
 std::vector<int> nested_dissection(const Eigen::MatrixBase<Derived>& coordinates, const Graph& g,
-                                   const NestedDissectionOptions& options) {
+                                   const NestedDissectionOptions& options, std::size_t* nonzeros) {
   const int n = g.size();
   if (int(coordinates.rows()) != n || coordinates.cols() != 3)
     throw Error(detail::message("nested_dissection: coordinates are ", coordinates.rows(), " x ",
@@ -341,7 +344,10 @@ std::vector<int> nested_dissection(const Eigen::MatrixBase<Derived>& coordinates
   by_balance.flat_axes(flat);
   std::vector<int> median = by_median.run();
   std::vector<int> balanced = by_balance.run();
-  return cholesky_nonzeros(g, balanced) < cholesky_nonzeros(g, median) ? balanced : median;
+  const std::size_t nnz_balanced = cholesky_nonzeros(g, balanced);
+  const std::size_t nnz_median = cholesky_nonzeros(g, median);
+  if (nonzeros) *nonzeros = std::min(nnz_balanced, nnz_median);
+  return nnz_balanced < nnz_median ? balanced : median;
 }
 
 }  // namespace massspring
