@@ -79,7 +79,15 @@ NOTES = """
   form: flag 1.63 against 1.40 floors; row form: curtain 1.47 against 1.33), batching square roots
   and divisions through Eigen packets (chunks of 256 springs: 15-25% slower with SSE2, 5-10%
   faster only with `-march=native`), an SSE reciprocal square root with Newton steps, and storing
-  k r per spring instead of k and r (5%).
+  k r per spring instead of k and r (5%). Tried again later: blocks of 128 springs (differences,
+  then square roots and divisions as whole Eigen arrays, then the scatter; curtain spring pass 146
+  -> 190 us) and two springs of a run at a time through one SSE2 `sqrtpd` and `divpd` (146 -> 146
+  us). On this machine one `1 / sqrt(x)` occupies the divider 3.7 ns alone, 1.8 ns per lane in
+  pairs and 0.9 ns in AVX fours, so the divider alone is most of the 4.5 ns a spring costs. The
+  pairs lose their gain at the end of each run of springs (about 5 springs per row, a branch the
+  predictor misses): a throwaway pass over flat pairs, whose run sums are stored unconditionally
+  instead of branched on, took the curtain's spring pass from 137 to 107 us. That is the lead left
+  for iteration / floor.
 - **The floor itself got faster, which raised iteration / floor.** Both substitutions are now
   gathers read in one direction (`detail::LowerFactor`): the forward one by rows of a
   row-compressed copy of L, the back one by columns read from their last entry down, each sum split
