@@ -9,6 +9,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#if defined(__SSE2__)
+#include <emmintrin.h>  // SSE2
+#endif
 #include <limits>
 #include <numeric>
 #include <type_traits>
@@ -43,6 +46,37 @@ enum class InitialGuess {
   /// From the inertial prediction X^t + dt V^t.
   Inertial,
 };
+
+namespace detail {
+
+/// For two squared lengths sq and numerators num, lane by lane: len = sqrt(sq) and
+/// quotient = num / len, each rounded once as by std::sqrt and by `/`. quotient is finite but
+/// meaningless where sq is 0 or NaN (the caller does not use it there). With SSE2 two doubles go
+/// through one sqrtpd and one divpd, built from and read back to registers: the divider, the
+/// costliest part of a spring, then takes about what one lane did (docs/performance.md). Floats
+/// go lane by lane: their scalar square root and division are short enough that sqrtps/divps
+/// measured slower (flag and skirt steps, 4%).
+template <class Scalar>
+inline void lengths2(const Scalar* sq, const Scalar* num, Scalar* len, Scalar* quotient) {
+#if defined(__SSE2__)
+  if constexpr (std::is_same_v<Scalar, double>) {
+    const __m128d l = _mm_sqrt_pd(_mm_set_pd(sq[1], sq[0]));
+    // max(l, clamp) is l for every sq > 0 (sqrt is monotone, and sq >= 2^-1074 gives
+    // l >= 2^-537), and the clamp for 0 and NaN (max returns its second operand for NaN).
+    const __m128d clamp = _mm_set1_pd(0x1p-537);
+    const __m128d q = _mm_div_pd(_mm_set_pd(num[1], num[0]), _mm_max_pd(l, clamp));
+    len[0] = _mm_cvtsd_f64(l), len[1] = _mm_cvtsd_f64(_mm_unpackhi_pd(l, l));
+    quotient[0] = _mm_cvtsd_f64(q), quotient[1] = _mm_cvtsd_f64(_mm_unpackhi_pd(q, q));
+    return;
+  }
+#endif
+  for (int k = 0; k < 2; ++k) {
+    len[k] = std::sqrt(sq[k]);
+    quotient[k] = sq[k] > 0 ? num[k] / len[k] : Scalar(0);
+  }
+}
+
+}  // namespace detail
 
 /// @brief How the local-global iterations of a step are combined.
 enum class Acceleration {
@@ -246,9 +280,8 @@ class FastMassSpring {
  private:
   using Buffer = Vector<Scalar>;
 
-  struct PackedSpring {
+  struct SpringEnds {
     int a, b;  // rows of the end points in the iterate (factor order; pinned rows after), a <= b
-    Scalar k, r;
   };
   struct Coupling {
     int row;  // iterate row of the free point
@@ -439,9 +472,9 @@ class FastMassSpring {
     if (!exact)
       for (int p : system.pinned()) penalty_rows_.push_back(row_[std::size_t(p)]);
 
-    // Springs grouped by their lower row a (compressed: spring_start_[a] to spring_start_[a + 1]),
-    // sorted by the higher row b within a group. The local step then accumulates row a in
-    // registers and scatters into row b only, with no read-modify-write chain through memory.
+    // Springs sorted by their lower row a, then by the higher row b. The local step then sums
+    // row a's share in registers over its run and scatters into row b only, with no
+    // read-modify-write chain through memory (see spring_pass).
     order_.resize(std::size_t(m));
     flipped_.clear();
     flipped_.reserve(std::size_t(m));
@@ -451,29 +484,31 @@ class FastMassSpring {
       return std::pair<int, int>(std::min(a, b), std::max(a, b));
     };
     std::sort(order_.begin(), order_.end(), [&](int x, int y) { return key(x) < key(y); });
-    springs_.resize(std::size_t(m));
-    spring_start_.assign(std::size_t(nx_ + 1), 0);
+    ends_.resize(std::size_t(m));
+    stiffness_.resize(m);
+    rest_.resize(m);
+    kr_.resize(m);
     coupling_.clear();
     for (int s = 0; s < m; ++s) {
       const int e = order_[std::size_t(s)];
       const int i = row_[std::size_t(springs(e, 0))], j = row_[std::size_t(springs(e, 1))];
       const int a = std::min(i, j), b = std::max(i, j);
-      ++spring_start_[std::size_t(a) + 1];
       // Stored as (a, b): d = x_a - x_b, which flips the sign of the spring's direction when
       // i > j; the direction of a zero-length spring is kept in that orientation.
-      springs_[std::size_t(s)] = {a, b, k(e), system.rest_lengths()(e)};
+      ends_[std::size_t(s)] = {a, b};
+      stiffness_(s) = k(e);
       flipped_.push_back(i > j);
       // -Q_FP X_P: a free point joined to a pinned one (rows after the free ones, so b) is pulled
       // by k x_pinned.
       if (a < nr_ && b >= nr_) coupling_.push_back({a, b - nr_, k(e)});
     }
-    std::partial_sum(spring_start_.begin(), spring_start_.end(), spring_start_.begin());
     mass_h2_.resize(nr_);
     for (int r = 0; r < nr_; ++r)
       mass_h2_(r) = mass(point_[std::size_t(r)]) * inv_dt2 + drag_ / dt_;
 
     const Eigen::Index size = 3 * Eigen::Index(nx_), free_size = 3 * Eigen::Index(nr_);
     for (Buffer& b : buffers_) b.setZero(size);
+    run_sum_.setZero(size);
     rhs0_.resize(free_size);
     inertial_.resize(free_size);
     force_.resize(free_size);
@@ -552,7 +587,10 @@ class FastMassSpring {
       for (Buffer& b : buffers_) restore_pins(b.data());
     }
     const auto& rest = system.rest_lengths();
-    for (std::size_t s = 0; s < springs_.size(); ++s) springs_[s].r = rest(order_[s]);
+    for (Eigen::Index s = 0; s < rest_.size(); ++s) {
+      rest_(s) = rest(order_[std::size_t(s)]);
+      kr_(s) = stiffness_(s) * rest_(s);
+    }
   }
 
   // Pinned rows (exact pins) back to their targets, after a solve or a scatter wrote into them.
@@ -566,57 +604,79 @@ class FastMassSpring {
   // the springs' energy; with neither (after the last iteration) it records each spring's
   // direction, which a spring of zero length keeps at the next step.
   //
-  // Springs are sorted by (a, b), a <= b: row a's share is summed in registers over the run of
-  // springs that share it and written once, so that no read-modify-write chain through memory
-  // links one spring to the next.
+  // Springs are sorted by (a, b), a <= b, and go two at a time whatever their rows: the two
+  // square roots and the two divisions k r / |d| share one SSE2 instruction each
+  // (detail::lengths2), and no branch depends on where a row's run of springs ends (a branch the
+  // predictor missed at nearly every run, about five springs on a cloth, each time draining the
+  // divisions in flight). Row a's share is summed in registers over its run, restarted where the
+  // run starts by a multiplication with 0 instead of a branch, and stored to run_sum_ after every
+  // spring, so that the last store holds the run's sum; run_sum_ is added to w after the pass.
+  // Row a's other additions (as the b of springs of lower rows) all come before that, as they
+  // came before the end of its run when the sum was added there. Rows that start no run keep
+  // run_sum_ at 0.
   template <bool Scatter, bool Energy>
   double spring_pass(const Scalar* x, Scalar* w) {
-    double energy = 0;
-    const int m = int(springs_.size());
-    int e = 0;
-    for (int a = 0; a < nx_ && e < m; ++a) e = spring_run<Scatter, Energy>(a, e, x, w, energy);
-    return energy / 2;
-  }
-
-  // The springs e, e + 1, ... whose lower row is a; returns the first spring past them. Adds
-  // k (|d| - r)^2 to energy (Energy), scatters k r d / |d| (Scatter) or records d / |d|.
-  template <bool Scatter, bool Energy>
-  int spring_run(int a, int e, const Scalar* x, Scalar* w, double& energy) {
-    const PackedSpring* sp = springs_.data();
-    const int m = int(springs_.size());
-    if (e >= m || sp[e].a != a) return e;
+    const SpringEnds* sp = ends_.data();
+    const Scalar* k = stiffness_.data();
+    const Scalar* r = rest_.data();
+    const Scalar* kr = kr_.data();
+    const int m = int(ends_.size());
     Scalar* dir = direction_.data();
-    const Scalar xa0 = x[3 * a], xa1 = x[3 * a + 1], xa2 = x[3 * a + 2];
-    Scalar acc0 = 0, acc1 = 0, acc2 = 0;  // k_e d_e summed into row a
-    for (; e < m && sp[e].a == a; ++e) {
-      const PackedSpring& s = sp[e];
-      const Scalar* xb = x + 3 * s.b;
-      const Scalar d0 = xa0 - xb[0], d1 = xa1 - xb[1], d2 = xa2 - xb[2];
-      const Scalar sq = d0 * d0 + d1 * d1 + d2 * d2;
-      const Scalar len = std::sqrt(sq);
-      const Scalar inv = sq > 0 ? Scalar(1) / len : Scalar(0);  // 1 / |d|
-      if constexpr (Energy) {
-        const Scalar stretch = len - s.r;
-        energy += double(s.k * stretch * stretch);
+    Scalar* sums = run_sum_.data();
+    double energy = 0;
+    int previous = -1;
+    Scalar acc0 = 0, acc1 = 0, acc2 = 0;  // k_e r_e d_e / |d_e| summed over row a's run so far
+    // Springs e and e + 1 (N = 2), or the odd last one (N = 1).
+    const auto springs_at = [&](int e, auto lanes) {
+      constexpr int N = decltype(lanes)::value;
+      Scalar d[2][3], sq[2], len[2], f[2], num[2];
+      for (int i = 0; i < 2; ++i) {
+        const int q = e + (i < N ? i : 0);  // N = 1: the second lane is not used
+        const SpringEnds& s = sp[q];
+        num[i] = Scatter ? kr[q] : Scalar(1);
+        const Scalar* xa = x + 3 * s.a;
+        const Scalar* xb = x + 3 * s.b;
+        d[i][0] = xa[0] - xb[0], d[i][1] = xa[1] - xb[1], d[i][2] = xa[2] - xb[2];
+        sq[i] = d[i][0] * d[i][0] + d[i][1] * d[i][1] + d[i][2] * d[i][2];
       }
-      if constexpr (Scatter) {
-        Scalar s0, s1, s2;  // k_e r_e times the spring's unit direction
-        if (sq > 0) {
-          const Scalar f = s.k * s.r * inv;
-          s0 = f * d0, s1 = f * d1, s2 = f * d2;
-        } else {
-          const Scalar f = s.k * s.r;
-          s0 = f * dir[3 * e], s1 = f * dir[3 * e + 1], s2 = f * dir[3 * e + 2];
+      detail::lengths2(sq, num, len, f);  // f = k r / |d| (Scatter) or 1 / |d|
+      for (int i = 0; i < N; ++i) {
+        const SpringEnds& s = sp[e + i];
+        if constexpr (Energy) {
+          const Scalar stretch = len[i] - r[e + i];
+          energy += double(k[e + i] * stretch * stretch);
         }
-        acc0 += s0, acc1 += s1, acc2 += s2;
-        Scalar* wb = w + 3 * s.b;
-        wb[0] -= s0, wb[1] -= s1, wb[2] -= s2;
-      } else if (sq > 0) {
-        dir[3 * e] = d0 * inv, dir[3 * e + 1] = d1 * inv, dir[3 * e + 2] = d2 * inv;
+        if constexpr (Scatter) {
+          Scalar s0, s1, s2;  // k_e r_e times the spring's unit direction
+          if (sq[i] > 0) {
+            s0 = f[i] * d[i][0], s1 = f[i] * d[i][1], s2 = f[i] * d[i][2];
+          } else {
+            const Scalar* u = dir + 3 * (e + i);
+            s0 = num[i] * u[0], s1 = num[i] * u[1], s2 = num[i] * u[2];
+          }
+          // acc * 1 + s is acc + s and acc * 0 + s is s, exactly, for finite acc (a NaN or an
+          // infinity reaches the next row too, where the substitution would take it anyway).
+          const Scalar keep = Scalar(s.a == previous);
+          previous = s.a;
+          acc0 = acc0 * keep + s0, acc1 = acc1 * keep + s1, acc2 = acc2 * keep + s2;
+          Scalar* sa = sums + 3 * s.a;
+          sa[0] = acc0, sa[1] = acc1, sa[2] = acc2;
+          Scalar* wb = w + 3 * s.b;
+          wb[0] -= s0, wb[1] -= s1, wb[2] -= s2;
+        } else if (sq[i] > 0) {
+          Scalar* u = dir + 3 * (e + i);
+          u[0] = d[i][0] * f[i], u[1] = d[i][1] * f[i], u[2] = d[i][2] * f[i];
+        }
       }
+    };
+    int e = 0;
+    for (; e + 1 < m; e += 2) springs_at(e, std::integral_constant<int, 2>{});
+    if (e < m) springs_at(e, std::integral_constant<int, 1>{});
+    if constexpr (Scatter) {
+      const Eigen::Index size = 3 * Eigen::Index(nx_);
+      for (Eigen::Index i = 0; i < size; ++i) w[i] += sums[i];
     }
-    if constexpr (Scatter) w[3 * a] += acc0, w[3 * a + 1] += acc1, w[3 * a + 2] += acc2;
-    return e;
+    return energy / 2;
   }
 
   // With Write, w = rhs0 on the free rows; with Energy, returns the iterate-dependent energy other
@@ -667,36 +727,12 @@ class FastMassSpring {
     restore_pins(w);
   }
 
-  template <class C, class = void>
-  struct has_lower : std::false_type {};
-  template <class C>
-  struct has_lower<C, std::void_t<decltype(std::declval<const C&>().lower())>> : std::true_type {};
-
-  // One whole iteration, w = G(x) = Q^-1 (rhs0 + A^T K D(x)), returning E(x) when Energy. With a
-  // sparse factor the local step is fused into the forward substitution: the springs whose lower
-  // row is j are done just before column j (row j is then complete; the rows below only receive
-  // additions, which commute with the substitution's), so that the spring arithmetic overlaps the
-  // substitution's memory traffic and row j is still in cache.
+  // One whole iteration, w = G(x) = Q^-1 (rhs0 + A^T K D(x)), returning E(x) when Energy.
   template <bool Energy>
   double iteration(const Scalar* x, Scalar* w) {
-    if constexpr (kFuse && has_lower<Cholesky>::value) {
-      const double quadratic = start_rhs<Energy>(x, w);
-      const auto l = llt_.lower();
-      double spring = 0;
-      int e = 0;
-      for (int j = 0; j < nr_; ++j) {
-        e = spring_run<true, Energy>(j, e, x, w, spring);
-        l.forward_row(j, w);
-      }
-      for (int a = nr_; a < nx_; ++a) e = spring_run<true, Energy>(a, e, x, w, spring);
-      l.backward(w);
-      restore_pins(w);
-      return quadratic + spring / 2;
-    } else {
-      const double energy = local_step<Energy>(x, w);
-      global_step(w);
-      return energy;
-    }
+    const double energy = local_step<Energy>(x, w);
+    global_step(w);
+    return energy;
   }
 
   // E at x without touching any right-hand side (and recording the springs' directions).
@@ -1005,7 +1041,6 @@ class FastMassSpring {
   }
 
   static constexpr int kMaxWindow = 16;
-  static constexpr bool kFuse = false;
 
   Scalar dt_ = 0;
   Scalar weight_ = 0;
@@ -1015,15 +1050,17 @@ class FastMassSpring {
   std::uint64_t revision_ = 0;
   int n_ = 0, nr_ = 0, nx_ = 0;
   std::size_t rejections_ = 0;
-  std::vector<int> free_, row_, point_, order_, penalty_rows_, spring_start_;
+  std::vector<int> free_, row_, point_, order_, penalty_rows_;
   std::vector<bool> flipped_;
-  std::vector<PackedSpring> springs_;
+  std::vector<SpringEnds> ends_;  // springs sorted by (a, b); their k, r and k r below
   std::vector<Coupling> coupling_;
   Matrix q_;
   Cholesky llt_;
   std::array<Buffer, 5> buffers_;
   Buffer rhs0_, inertial_, force_, mass_h2_, targets_, penalty_targets_, direction_;
-  Scalar drag_ = 0;            // sum of the system's LinearDrag coefficients [N s/m]
+  Buffer stiffness_, rest_, kr_;
+  Buffer run_sum_;   // per row: the sum of its run of springs (spring_pass), 0 for rows with none
+  Scalar drag_ = 0;  // sum of the system's LinearDrag coefficients [N s/m]
   bool other_terms_ = false;   // the system has force terms other than drag
   Points<Scalar> term_force_;  // their force at the step's start
   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> df_, dg_;
