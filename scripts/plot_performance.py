@@ -73,21 +73,22 @@ NOTES = """
   read-modify-write chain through memory when consecutive springs share a point (springs sorted by
   their lower row, whose share is summed in registers), the energy evaluation in every iteration
   (only where the report or the tolerance needs it), and the copy of the solution. What is left
-  above the floor is the spring pass itself: about 4.5 ns per spring on this machine, of which the
-  square root and the division are about 2 ns (measured by replacing them). Tried and dropped
+  above the floor is the spring pass itself: about 4 ns per spring on this machine (4.5 before
+  the pairs described below), most of it the square root and the division. Tried and dropped
   because they measured slower: fusing the spring pass into the forward substitution (column
   form: flag 1.63 against 1.40 floors; row form: curtain 1.47 against 1.33), batching square roots
   and divisions through Eigen packets (chunks of 256 springs: 15-25% slower with SSE2, 5-10%
   faster only with `-march=native`), an SSE reciprocal square root with Newton steps, and storing
-  k r per spring instead of k and r (5%). Tried again later: blocks of 128 springs (differences,
-  then square roots and divisions as whole Eigen arrays, then the scatter; curtain spring pass 146
-  -> 190 us) and two springs of a run at a time through one SSE2 `sqrtpd` and `divpd` (146 -> 146
-  us). On this machine one `1 / sqrt(x)` occupies the divider 3.7 ns alone, 1.8 ns per lane in
-  pairs and 0.9 ns in AVX fours, so the divider alone is most of the 4.5 ns a spring costs. The
-  pairs lose their gain at the end of each run of springs (about 5 springs per row, a branch the
-  predictor misses): a throwaway pass over flat pairs, whose run sums are stored unconditionally
-  instead of branched on, took the curtain's spring pass from 137 to 107 us. That is the lead left
-  for iteration / floor.
+  k r per spring instead of k and r (5%). **What did pay, later:** pairs of springs taken in a
+  flat loop across rows, one SSE2 `sqrtpd` and one `divpd` per pair, and each row's run sum
+  restarted by a multiplication with 0 instead of a branch (stored after every spring, added to
+  the right-hand side after the pass): steps 4-5% faster in double, 3% in float. The reason the
+  earlier batches failed: on this machine one `1 / sqrt(x)` occupies the divider 3.7 ns alone and
+  1.8 ns per lane in pairs (0.9 ns in AVX fours), so the divider is most of a spring's 4.5 ns, but
+  the branch at the end of each row's run (about five springs on a cloth) is mispredicted nearly
+  every time and drains the divisions in flight; pairs within a run (146 -> 146 us) or blocks
+  through Eigen arrays (146 -> 190 us) kept that branch. Packed float pairs measured 4% slower
+  than scalar float lanes and are not used.
 - **The floor itself got faster, which raised iteration / floor.** Both substitutions are now
   gathers read in one direction (`detail::LowerFactor`): the forward one by rows of a
   row-compressed copy of L, the back one by columns read from their last entry down, each sum split
