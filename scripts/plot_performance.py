@@ -85,9 +85,10 @@ NOTES = """
   the right-hand side after the pass): steps 4-5% faster in double, 3% in float. The reason the
   earlier batches failed: on this machine one `1 / sqrt(x)` occupies the divider 3.7 ns alone and
   1.8 ns per lane in pairs (0.9 ns in AVX fours), so the divider is most of a spring's 4.5 ns, but
-  the branch at the end of each row's run (about five springs on a cloth) is mispredicted nearly
-  every time and drains the divisions in flight; pairs within a run (146 -> 146 us) or blocks
-  through Eigen arrays (146 -> 190 us) kept that branch. Packed float pairs measured 4% slower
+  the branch at the end of each row's run (about five springs on a cloth, at irregular intervals)
+  is most likely mispredicted and drains the divisions in flight (an inference: this VM exposes
+  no branch counters; removing that branch is what made the pairs pay). Pairs within a run
+  (146 -> 146 us) and blocks through Eigen arrays (146 -> 190 us) kept it. Packed float pairs measured 4% slower
   than scalar float lanes and are not used.
 - **The floor itself got faster, which raised iteration / floor.** Both substitutions are now
   gathers read in one direction (`detail::LowerFactor`): the forward one by rows of a

@@ -606,14 +606,14 @@ class FastMassSpring {
   //
   // Springs are sorted by (a, b), a <= b, and go two at a time whatever their rows: the two
   // square roots and the two divisions k r / |d| share one SSE2 instruction each
-  // (detail::lengths2), and no branch depends on where a row's run of springs ends (a branch the
-  // predictor missed at nearly every run, about five springs on a cloth, each time draining the
-  // divisions in flight). Row a's share is summed in registers over its run, restarted where the
-  // run starts by a multiplication with 0 instead of a branch, and stored to run_sum_ after every
-  // spring, so that the last store holds the run's sum; run_sum_ is added to w after the pass.
-  // Row a's other additions (as the b of springs of lower rows) all come before that, as they
-  // came before the end of its run when the sum was added there. Rows that start no run keep
-  // run_sum_ at 0.
+  // (detail::lengths2), and no branch depends on where a row's run of springs ends (about five
+  // springs on a cloth, at irregular intervals: a branch the predictor most likely misses, each
+  // time draining the divisions in flight; without it the pairs paid, with it they did not). Row
+  // a's share is summed in registers over its run, restarted where the run starts by a
+  // multiplication with 0 instead of a branch, and stored to run_sum_ after every spring, so that
+  // the last store holds the run's sum; run_sum_ is added to w after the pass. Row a's other
+  // additions (as the b of springs of lower rows) all come before that, as they came before the end
+  // of its run when the sum was added there. Rows that start no run keep run_sum_ at 0.
   template <bool Scatter, bool Energy>
   double spring_pass(const Scalar* x, Scalar* w) {
     const SpringEnds* sp = ends_.data();
