@@ -27,6 +27,8 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -610,6 +612,33 @@ void register_benchmarks() {
       });
     }
   }
+  // The divider alone: k r / sqrt(x) for the curtain's 32158 springs' worth of values, one value
+  // at a time (std::sqrt then /, as the spring pass did before its pairs) and in pairs through
+  // detail::lengths2 (the spring pass's own helper: one SSE2 sqrtpd and divpd per pair). The
+  // values per second are items_per_second; docs/performance.md quotes 1e9 / that, ns per value.
+  const auto divider = [](bool pairs) {
+    return [pairs](benchmark::State& state) {
+      constexpr int kValues = 32158;
+      std::vector<double> sq(kValues), num(kValues, 1000.0), len(kValues), quotient(kValues);
+      for (int i = 0; i < kValues; ++i) sq[std::size_t(i)] = 1e-4 * (1 + i % 97);
+      for (auto _ : state) {
+        if (pairs) {
+          for (std::size_t i = 0; i < kValues; i += 2)
+            massspring::detail::lengths2(&sq[i], &num[i], &len[i], &quotient[i]);
+        } else {
+          for (std::size_t i = 0; i < kValues; ++i) {
+            len[i] = std::sqrt(sq[i]);
+            quotient[i] = num[i] / len[i];
+          }
+        }
+        benchmark::DoNotOptimize(quotient.data());
+        benchmark::ClobberMemory();
+      }
+      state.SetItemsProcessed(std::int64_t(state.iterations()) * kValues);
+    };
+  };
+  benchmark::RegisterBenchmark("Divider/OneAtATime", divider(false))->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("Divider/Pairs", divider(true))->Unit(benchmark::kMicrosecond);
 }
 
 // ---- the summary

@@ -82,13 +82,17 @@ NOTES = """
   k r per spring instead of k and r (5%). **What did pay, later:** pairs of springs taken in a
   flat loop across rows, one SSE2 `sqrtpd` and one `divpd` per pair, and each row's run sum
   restarted by a multiplication with 0 instead of a branch (stored after every spring, added to
-  the right-hand side after the pass): steps 4-5% faster in double, 3% in float. The reason the
-  earlier batches failed: on this machine one `1 / sqrt(x)` occupies the divider 3.7 ns alone and
-  1.8 ns per lane in pairs (0.9 ns in AVX fours), so the divider is most of a spring's 4.5 ns, but
-  the branch at the end of each row's run (about five springs on a cloth, at irregular intervals)
-  is most likely mispredicted and drains the divisions in flight (an inference: this VM exposes
-  no branch counters; removing that branch is what made the pairs pay). Pairs within a run
-  (146 -> 146 us) and blocks through Eigen arrays (146 -> 190 us) kept it. Packed float pairs measured 4% slower
+  the right-hand side after the pass): steps 4-5% faster in double, 3% in float (`Step/Sparse`
+  and `Step/SparseFloat` of the binaries before and after, interleaved twice). Why the earlier
+  batches failed: one `k r / sqrt(x)` occupies the divider 3.7 ns one value at a time and 1.9 ns
+  per value in pairs (`bench_fast_mass_spring --benchmark_filter=Divider`: 1e9 /
+  items_per_second), so the divider is most of a spring's 4.5 ns; but the branch at the end of
+  each row's run (about five springs on a cloth, at irregular intervals) is most likely
+  mispredicted and drains the divisions in flight (an inference: this VM exposes no branch
+  counters; removing that branch is what made the pairs pay). Pairs within a run and blocks
+  through Eigen arrays kept that branch: the curtain's spring pass alone took 146 us before, 146
+  and 190 us with them, 125 us with the flat pairs (throwaway programs timing `spring_pass` on
+  builds of each variant; the two that lost were not kept). Packed float pairs measured 4% slower
   than scalar float lanes and are not used.
 - **The floor itself got faster, which raised iteration / floor.** Both substitutions are now
   gathers read in one direction (`detail::LowerFactor`): the forward one by rows of a
