@@ -16,12 +16,14 @@
 // Names: <what>/<solver>/<scene>, what = Precompute | Step | Floor, solver = Sparse | Dense (ours,
 // double, penalty pins as the seed), SparseExact / SparseFloat (ours, exact pins, double / float),
 // Chebyshev / Anderson (ours, accelerated, as many iterations as reach the error of 50 plain ones),
-// Seed (SeedFastMassSpring), EigenSolve (Eigen's SimplicialLLT::solve on the seed's factor).
+// Seed (SeedFastMassSpring), EigenSolve (Eigen's SimplicialLLT::solve on the seed's factor),
+// SparseSSE2 (ours with options.avx2 = false: the SSE2 substitution, where Sparse takes the AVX2
+// + FMA one when the CPU has it).
 // Counters: points, springs, nnz_L (stored entries of the factor of Q) and iterations (local-global
 // iterations per step: for ours the mean step() reported, elsewhere the configured 50). After the
 // run, summary tables compare ours with the seed per scene (medians of the repetitions), with each
 // iteration's time as a multiple of the floor; the accelerated solvers' time to the error of 50
-// plain iterations; float against double.
+// plain iterations; the AVX2 substitution against the SSE2 one; float against double.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -213,6 +215,7 @@ void bm_floor(benchmark::State& state, const Scene& scene, const System& proto, 
   typename System::Traits::Cholesky cholesky;
   if constexpr (std::is_same_v<System, SparseSystem>) {
     if (threads > 1) cholesky.set_threads(threads);
+    cholesky.set_avx2(options.avx2);
   }
   if (!precompute_or_skip(state, solver, proto)) return;
   bool ok = false;
@@ -243,6 +246,7 @@ void bm_floor(benchmark::State& state, const Scene& scene, const System& proto, 
 const auto kSeedLike = [](auto&) {};
 const auto kExact = [](auto& o) { o.pins = massspring::PinMode::Exact; };
 const auto kAmdOrder = [](auto& o) { o.ordering = massspring::FillOrdering::Solver; };
+const auto kSse2 = [](auto& o) { o.avx2 = false; };
 
 // ---- the seed
 // ------------------------------------------------------------------------------------
@@ -567,6 +571,13 @@ void register_benchmarks() {
     });
     reg(repeated, "Floor", "Sparse",
         [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kSeedLike); });
+    // The SSE2 substitution (options.avx2 = false): what the AVX2 + FMA one gains.
+    reg(repeated, "Floor", "SparseSSE2",
+        [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kSse2); });
+    reg(repeated, "Step", "SparseSSE2", [sc](benchmark::State& st) {
+      bm_step(st, *sc, *sc->sparse, kSse2, static_cast<const SparseSystem*>(nullptr),
+              "Sparse, SSE2 substitution: one step");
+    });
     reg(repeated, "Floor", "SparseExact",
         [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kExact); });
     reg(repeated, "Floor", "SparseFloat",
@@ -765,6 +776,25 @@ void print_summary(const RecordingReporter& r) {
                 cell(anderson, "%.3f").c_str(), cell(ratio(seed, anderson), "%.1fx").c_str(),
                 cell(seed, "%.3f").c_str(), cell(cheb2, "%.3f").c_str(),
                 cell(ratio(seed_wall, cheb2), "%.1fx").c_str());
+  }
+
+  std::printf(
+      "\n## AVX2 + FMA substitution against SSE2 (options.avx2), double, %d iterations, medians "
+      "[ms]%s\n\n",
+      kIterations,
+      massspring::detail::cpu_has_avx2_fma() ? "" : " (this CPU has no AVX2 + FMA: both SSE2)");
+  std::printf(
+      "| scene | AVX2 floor | SSE2 floor | SSE2/AVX2 floor | AVX2 ms/step | SSE2 ms/step | "
+      "SSE2/AVX2 step |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const Scene& s : scenes()) {
+    const double af = t(s, "Floor", "Sparse"), nf = t(s, "Floor", "SparseSSE2"),
+                 as = t(s, "Step", "Sparse"), ns = t(s, "Step", "SparseSSE2");
+    if (af < 0 || nf < 0) continue;
+    std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", s.name.c_str(), cell(af, "%.4f").c_str(),
+                cell(nf, "%.4f").c_str(), cell(ratio(nf, af), "%.2fx").c_str(),
+                cell(as, "%.3f").c_str(), cell(ns, "%.3f").c_str(),
+                cell(ratio(ns, as), "%.2fx").c_str());
   }
 
   std::printf("\n## float against double: exact pins, %d iterations, medians [ms]\n\n",

@@ -111,8 +111,37 @@ NOTES = """
   the assignment's skirt (9.8 N on points of ~1e-4 kg) about a third of its iterates raise the
   energy, each rejection clears its history, and it is little better than plain: use Chebyshev for
   such violently forced scenes.
-- **float** gains little: the substitution is bound by the index loads and the latency of the
-  gathers, not by the bytes of the values.
+- **The AVX2 + FMA substitution** (`detail::LowerFactor`, chosen at run time, `options.avx2`,
+  default on). A row of w (three values) sits in one register with a zero fourth lane: 256 bits
+  for double, 128 for float; each entry of L is one broadcast, one load of a row and one fused
+  multiply-add instead of three multiplications and three additions. The forward substitution
+  loads rows with one masked load; the back one loads them as two values and one, because it
+  reads rows it has just stored, and a wide load of a row stored by narrower stores waits for
+  them (masked loads there: 256^2 back substitution 1.73 -> 2.14 ms, 512^2 8.2 -> 9.6 ms, in a
+  throwaway program timing each substitution of the cloth sweep's factors; the forward one gained
+  from them, 2.22 -> 2.02 ms at 256^2). Throwaway timings of one solve, SSE2 -> AVX2: 28 -> 26
+  us at 32^2, 148 -> 132 us at 64^2, 763 -> 674 us at 128^2, 4.35 -> 3.70 ms at 256^2, 21.0 ->
+  18.2 ms at 512^2. The project's own figures are in the table above. The fused roundings change
+  results in the last bits, so trajectories are the same bit for bit only between machines that
+  take the same path (`options.avx2 = false` takes SSE2 everywhere); one and two threads still
+  agree bit for bit on either path.
+- **Tried this session and dropped** (throwaway programs on the cloth sweep's factors, not kept):
+  - *Supernodal storage* (runs of columns with one pattern stored once, without a row index per
+    entry; 56% of nnz(L) at 512^2 is in runs at least 16 wide). As dense blocks read by both
+    substitutions it was up to 2x slower in the back substitution; as segments of the row copy
+    (forward only) 3-10% faster forward on SSE2 and nothing once the AVX2 rows were in; sharing
+    the run's row indices in the back substitution was 20-30% slower (a second loop per column,
+    and its exit, per column). The substitutions here are bound by instructions and by the
+    latency of each row's sum, not by the bytes of the index arrays.
+  - *Software prefetch* of the gathered rows 8 to 32 entries ahead: 5-10% slower at every size.
+  - *No branch for the odd last entry* of a row (a multiplication by 0 instead): no change.
+  - *The spring pass four springs at a time* (one 256-bit `vsqrtpd` and `vdivpd`): the divider
+    alone takes 0.94 ns per value against 1.87 in pairs (throwaway program), but called out of
+    line from the baseline-compiled spring pass (an AVX2 function cannot be inlined into it) the
+    curtain's step went from 27 to 36-38 ms. Compiling the whole pass twice would be needed.
+- **float** now gains from the 128-bit AVX2 rows: its floor is 10-20% below double's (table
+  above). Before them it gained little: the SSE2 substitution is bound by the index loads and
+  the latency of the gathers, not by the bytes of the values.
 - **The order of elimination.** `FillOrdering::Auto` (the default) counts the factor's nonzeros
   for two orders before factorising (elimination tree and row subtrees, `cholesky_nonzeros`) and
   factorises with the smaller: Eigen's AMD, or geometric nested dissection of the rest positions
@@ -291,6 +320,13 @@ at or below that of 50 plain iterations. Chebyshev's rho is estimated by the sol
 iterations on its first step, untimed here like any precompute).
 
 {table_text(bench, "acceleration")}
+
+## The AVX2 + FMA substitution against SSE2 (`options.avx2`)
+
+`Floor/Sparse` and `Step/Sparse` take the AVX2 + FMA substitution when the CPU has it (this one
+does); `Floor/SparseSSE2` and `Step/SparseSSE2` are the same with `options.avx2 = false`.
+
+{table_text(bench, "AVX2 + FMA substitution")}
 
 ## float against double (exact pins)
 

@@ -1097,6 +1097,38 @@ TEST_CASE("invalid acceleration options are refused") {
 
 // ---- threads -------------------------------------------------------------------------------
 
+TEST_CASE("options.avx2 = false: the SSE2 substitution, within rounding of the default") {
+  using System = MassSpringSystem<double>;
+  System a = small_cloth<System>(24, 20), b = a;
+  FastMassSpring<System> wide, narrow;
+  for (auto* solver : {&wide, &narrow}) {
+    solver->options.gravity = {0, -9.8, 0};
+    solver->options.iterations = 20;
+  }
+  narrow.options.avx2 = false;
+  wide.precompute(a, 1.0 / 30);
+  narrow.precompute(b, 1.0 / 30);
+  for (int frame = 0; frame < 10; ++frame) {
+    REQUIRE(wide.step(a).ok());
+    REQUIRE(narrow.step(b).ok());
+  }
+  CHECK_FALSE(narrow.factorization().avx2());
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+  CHECK(wide.factorization().avx2() == massspring::detail::cpu_has_avx2_fma());
+#else
+  CHECK_FALSE(wide.factorization().avx2());
+#endif
+  // The same iteration with other roundings: 10 steps of a 24 x 20 cloth that has fallen about
+  // half a metre agree to within a few hundred ulps of the positions.
+  const double scale = a.positions().cwiseAbs().maxCoeff();
+  CHECK((a.positions() - b.positions()).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  if (wide.factorization().avx2()) CHECK(a.positions() != b.positions());
+  // Switching takes effect at the next step, without refactorising.
+  narrow.options.avx2 = true;
+  CHECK_FALSE(narrow.step(b).refactorized);
+  CHECK(narrow.factorization().avx2() == wide.factorization().avx2());
+}
+
 TEST_CASE("options.threads: refused below 1, and on Dense storage above 1") {
   using System = MassSpringSystem<double>;
   System s = small_cloth<System>();

@@ -9,30 +9,9 @@
 #include <vector>
 
 #include "support/alloc_counter.hpp"
+#include "support/random_spd.hpp"
 
-namespace {
-
-// A random sparse SPD matrix: a random graph Laplacian (weights > 0) plus a positive diagonal.
-template <class Scalar>
-Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int> random_spd(int n, int edges, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> index(0, n - 1);
-  std::uniform_real_distribution<double> weight(0.5, 2.0);
-  std::vector<Eigen::Triplet<Scalar, int>> t;
-  for (int e = 0; e < edges; ++e) {
-    const int i = index(rng), j = index(rng);
-    if (i == j) continue;
-    const auto w = Scalar(weight(rng));
-    t.emplace_back(i, i, w);
-    t.emplace_back(j, j, w);
-    t.emplace_back(i, j, -w);
-    t.emplace_back(j, i, -w);
-  }
-  for (int i = 0; i < n; ++i) t.emplace_back(i, i, Scalar(weight(rng)));
-  return massspring::storage_traits<massspring::Sparse, Scalar>::from_triplets(n, n, t);
-}
-
-}  // namespace
+using massspring::test::random_spd;
 
 TEST_CASE_TEMPLATE("SparseCholesky::solve equals Eigen's SimplicialLLT::solve", Scalar, float,
                    double) {
@@ -144,51 +123,6 @@ TEST_CASE("storage_traits<Sparse>::from_triplets sums duplicates") {
   CHECK(m.nonZeros() == 2);
 }
 
-TEST_CASE("LowerFactor: forward and back substitution each equal Eigen's triangular solves") {
-  // Rows and columns of every length, odd and even (the substitutions split each sum in two).
-  for (const int edges : {0, 40, 1200}) {
-    CAPTURE(edges);
-    const int n = 300;
-    const auto q = random_spd<double>(n, edges, 5);
-    massspring::SparseCholesky<double> llt;
-    REQUIRE(llt.compute(q));
-    const auto& l = llt.factor();
-    const auto view = llt.lower();
-    // The row copy is the strict lower part of L, row by row, columns ascending.
-    const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows =
-        Eigen::SparseMatrix<double, Eigen::ColMajor, int>(l.triangularView<Eigen::StrictlyLower>());
-    REQUIRE(view.row_outer[n] == rows.nonZeros());
-    for (int i = 0; i <= n; ++i) REQUIRE(view.row_outer[i] == rows.outerIndexPtr()[i]);
-    for (Eigen::Index p = 0; p < rows.nonZeros(); ++p) {
-      REQUIRE(view.row_inner[p] == rows.innerIndexPtr()[p]);
-      REQUIRE(view.row_value[p] == rows.valuePtr()[p]);
-    }
-
-    const Eigen::Matrix<double, Eigen::Dynamic, 3> b = Eigen::MatrixXd::Random(n, 3);
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> w = b;
-    view.forward(w.data());
-    const Eigen::Matrix<double, Eigen::Dynamic, 3> z = l.triangularView<Eigen::Lower>().solve(b);
-    CHECK((w - z).norm() <= 1e-13 * z.norm());
-    w = b;
-    view.backward(w.data());
-    const Eigen::Matrix<double, Eigen::Dynamic, 3> u =
-        l.transpose().triangularView<Eigen::Upper>().solve(b);
-    CHECK((w - u).norm() <= 1e-13 * u.norm());
-  }
-}
-
-TEST_CASE("LowerFactorRows refuses a column that does not start with its diagonal") {
-  // 2 x 2, column 0 holding only the entry (1, 0): no diagonal first.
-  const int outer[] = {0, 1, 2};
-  const int inner[] = {1, 1};
-  const double value[] = {0.5, 2.0};
-  massspring::detail::LowerFactorRows<double> rows;
-  CHECK_FALSE(rows.build(2, outer, inner, value));
-  const int good_inner[] = {0, 1};
-  CHECK(rows.build(2, outer, good_inner, value));
-  CHECK(rows.inv_diag[0] == doctest::Approx(2.0));
-}
-
 #ifdef _OPENMP
 TEST_CASE("SparseCholesky with threads: a valid split, and the same solution bit for bit") {
   for (const int threads : {2, 3}) {
@@ -223,10 +157,17 @@ TEST_CASE("SparseCholesky with threads: a valid split, and the same solution bit
       }
       const massspring::Points<double> b = massspring::Points<double>::Random(n, 3);
       massspring::Points<double> x1(n, 3), x2(n, 3);
-      serial.solve(b, x1);
-      parallel.solve(b, x2);
-      CHECK(x1 == x2);
-      CHECK((q * x2 - b).norm() <= 1e-12 * b.norm());
+      // With the AVX2 substitution where the CPU has it (the default), and with the SSE2 one.
+      for (const bool avx2 : {true, false}) {
+        CAPTURE(avx2);
+        serial.set_avx2(avx2);
+        parallel.set_avx2(avx2);
+        CHECK(serial.avx2() == parallel.avx2());
+        serial.solve(b, x1);
+        parallel.solve(b, x2);
+        CHECK(x1 == x2);
+        CHECK((q * x2 - b).norm() <= 1e-12 * b.norm());
+      }
     }
   }
 }

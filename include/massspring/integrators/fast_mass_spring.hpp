@@ -157,6 +157,14 @@ struct FastMassSpringOptions {
   /// crossover measured on 2 cores. A change takes effect at the next step (planning the split
   /// allocates, once).
   int threads = 1;
+  /// @brief Substitute with AVX2 and FMA instructions where the CPU has them (Sparse storage and
+  /// CHOLMOD; GCC or Clang on x86-64; checked at run time). Default true: see
+  /// docs/performance.md for what it gains. Results differ from the SSE2 substitution's in the
+  /// last bits (fused multiply-adds), so a trajectory is the same bit for bit only between
+  /// machines that take the same path: false takes the SSE2 one everywhere. Ignored by storages
+  /// without the choice (Dense). Compiling with MASSSPRING_NO_AVX2 defined leaves the AVX2 code
+  /// out.
+  bool avx2 = true;
   /// @brief The factor's elimination order (default Auto: the one with fewer nonzeros of nested
   /// dissection and the Cholesky type's own). Sparse storage only: with a Cholesky that takes no
   /// given order (Dense, CHOLMOD) Auto is its own order and NestedDissection is refused. The
@@ -383,11 +391,18 @@ class FastMassSpring {
     return llt_.compute(q_);
   }
 
-  // The solver's threads to the options' (SparseCholesky::set_threads checks for OpenMP).
+  template <class C, class = void>
+  struct has_avx2 : std::false_type {};
+  template <class C>
+  struct has_avx2<C, std::void_t<decltype(std::declval<C&>().set_avx2(true))>> : std::true_type {};
+
+  // The solver's threads and AVX2 choice to the options' (SparseCholesky::set_threads checks for
+  // OpenMP).
   void apply_threads() {
     if constexpr (has_threads<Cholesky>::value) {
       if (llt_.threads() != options.threads) llt_.set_threads(options.threads);
     }
+    if constexpr (has_avx2<Cholesky>::value) llt_.set_avx2(options.avx2);
   }
 
   // ---- precompute -------------------------------------------------------------------------------

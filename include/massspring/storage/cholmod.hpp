@@ -118,6 +118,10 @@ class CholmodCholesky {
   /// @brief The ordering CHOLMOD chose (CHOLMOD_AMD, CHOLMOD_METIS, ...; see cholmod.h).
   [[nodiscard]] int chosen_ordering() const { return analysed_ordering_; }
 
+  /// @brief Allow the AVX2 + FMA substitution (default true; see SparseCholesky::set_avx2).
+  void set_avx2(bool allowed) { rows_.wide = allowed; }
+  /// @brief True when solves use the AVX2 + FMA substitution.
+  [[nodiscard]] bool avx2() const { return lower().wide; }
   /// @brief L and its inverse diagonal (see detail::LowerFactor).
   [[nodiscard]] detail::LowerFactor<Scalar, int> lower() const {
     return rows_.view(int(rows()), outer_.data(), inner_.data(), value_.data());

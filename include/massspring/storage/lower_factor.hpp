@@ -1,0 +1,435 @@
+#pragma once
+/// @file
+/// @brief detail::LowerFactor and detail::LowerFactorRows: forward and back substitution with a
+/// sparse Cholesky factor L for three right-hand sides at once, in place, allocation-free, with
+/// an AVX2 + FMA version chosen at run time (system/detail/avx2.hpp).
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "massspring/system/detail/avx2.hpp"
+
+namespace massspring {
+namespace detail {
+
+template <class Scalar, class Index>
+struct LowerFactor;
+
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+template <class Scalar, class Index>
+MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
+                                              const Index* order, Index begin, Index end,
+                                              Scalar* w);
+template <class Scalar, class Index>
+MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>& f,
+                                               const Index* order, Index begin, Index end,
+                                               Scalar* w);
+#endif
+
+/// @brief A lower factor L (column j's diagonal first in the column-compressed arrays) with its
+/// inverse diagonal and a row-compressed copy of its strict lower part, and forward and back
+/// substitution for three right-hand sides stored row-major (w[3 r + c]), in place: one walk of L
+/// forward and one back for all three columns.
+///
+/// Both substitutions are gathers (a row's sum over the rows already solved, held in registers):
+/// the forward one walks the row copy upward, the back one walks the columns downward, each
+/// column from its last entry to its first, so that every array is read in one direction only and
+/// the hardware prefetcher follows it. Each sum is split over two sets of accumulators, so that the
+/// additions do not form one chain of dependent latencies. On the 2.6 GHz EPYC of the project's
+/// measurements this halves the solve of a 256 x 256 cloth against a column-oriented (scatter)
+/// forward substitution and a back substitution reading each column upward (see
+/// docs/performance.md).
+///
+/// forward_row() and backward_row() are the baseline (SSE2) rows. forward_rows(), backward_rows()
+/// and everything built on them take the AVX2 + FMA rows instead when `wide` is set: the same
+/// sums, rounded once per product.
+template <class Scalar, class Index>
+struct LowerFactor {
+  Index n = 0;
+  const Index* outer = nullptr;  // column starts (n + 1), diagonal first in each column
+  const Index* inner = nullptr;
+  const Scalar* value = nullptr;
+  const Scalar* inv_diag = nullptr;   // 1 / L(j, j)
+  const Index* row_outer = nullptr;   // row starts (n + 1) of the strict lower part
+  const Index* row_inner = nullptr;   // its column indices, ascending in each row
+  const Scalar* row_value = nullptr;  // its values
+  /// Parallel schedule (see LowerFactorRows::plan_threads): parts 0 .. parts - 1 are the rows
+  /// schedule[part_start[t] .. part_start[t + 1]), each a union of whole subtrees of L's
+  /// elimination tree, ascending; schedule[part_start[parts] .. n) are the rows above them (the
+  /// top, ascending). parts == 0: no schedule.
+  const Index* schedule = nullptr;
+  const Index* part_start = nullptr;
+  int parts = 0;
+  /// Substitute with the AVX2 + FMA rows (LowerFactorRows::view() sets it when the CPU has
+  /// both). Their results differ from the SSE2 rows' in the last bits: each product is added
+  /// with one rounding (a fused multiply-add) instead of two.
+  bool wide = false;
+
+  /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself).
+  void forward_rows(const Index* order, Index begin, Index end, Scalar* w) const {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    if (wide) return forward_rows_avx2(*this, order, begin, end, w);
+#endif
+    for (Index q = begin; q < end; ++q) forward_row(order ? order[q] : q, w);
+  }
+
+  /// @brief backward_row(order[q]) for q = end - 1 down to begin (order null: q itself).
+  void backward_rows(const Index* order, Index begin, Index end, Scalar* w) const {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    if (wide) return backward_rows_avx2(*this, order, begin, end, w);
+#endif
+    for (Index q = end - 1; q >= begin; --q) backward_row(order ? order[q] : q, w);
+  }
+
+  /// @brief Row i of the forward substitution L z = w: z_i = (w_i - sum_{j<i} L(i, j) z_j) /
+  /// L(i, i). Rows must be done in order 0, 1, ..., n - 1; row i of w must be complete (every
+  /// addition to it done) when it is; rows below i are not touched.
+  void forward_row(Index i, Scalar* w) const {
+    const Index first = row_outer[i];
+    solve_row<1>(i, row_inner + first, row_value + first, row_outer[i + 1] - first, w);
+  }
+
+  /// @brief The forward substitution L z = w in place.
+  void forward(Scalar* w) const { forward_rows(nullptr, 0, n, w); }
+
+  /// @brief Row j of the back substitution L^T u = z: u_j = (z_j - sum_{i>j} L(i, j) u_i) /
+  /// L(j, j), a gather from the rows below, column j of L read from its last entry up. Rows must
+  /// be done in order n - 1, ..., 0 (or any order that finishes every row i with L(i, j) != 0
+  /// before j).
+  void backward_row(Index j, Scalar* w) const {
+    const Index last = outer[j + 1] - 1;  // the diagonal is at outer[j]
+    solve_row<-1>(j, inner + last, value + last, last - outer[j], w);
+  }
+
+  /// @brief The back substitution L^T u = z in place.
+  void backward(Scalar* w) const { backward_rows(nullptr, 0, n, w); }
+
+  /// @brief w = (L L^T)^-1 w.
+  void solve(Scalar* w) const {
+    forward(w);
+    backward(w);
+  }
+
+  /// @brief w = (L L^T)^-1 w on `parts` OpenMP threads along the schedule: each thread
+  /// substitutes forward its part (a union of subtrees, which needs no other rows), one thread the
+  /// top after a barrier, forward then back, and after a second barrier each thread its part
+  /// back. The same operations as solve() in the same order within each row: the same result, bit
+  /// for bit. Without OpenMP (or without a schedule) it is solve().
+  void solve_parallel(Scalar* w) const {
+#ifdef _OPENMP
+    if (parts < 2) return solve(w);
+#pragma omp parallel num_threads(parts)
+    {
+      const int t = omp_get_thread_num();
+      const int threads = omp_get_num_threads();  // fewer than asked: the parts are shared out
+      for (int part = t; part < parts; part += threads)
+        forward_rows(schedule, part_start[part], part_start[part + 1], w);
+#pragma omp barrier
+#pragma omp single
+      {
+        forward_rows(schedule, part_start[parts], n, w);
+        backward_rows(schedule, part_start[parts], n, w);
+      }  // (an implied barrier)
+      for (int part = t; part < parts; part += threads)
+        backward_rows(schedule, part_start[part], part_start[part + 1], w);
+    }
+#else
+    solve(w);
+#endif
+  }
+
+ private:
+  // w_r = (w_r - sum_k l[k * Step] w_{idx[k * Step]}) / L(r, r) over k = 0 .. count - 1 (Step +1:
+  // the entries read upward, -1: downward), the sum split over two accumulator sets (even and
+  // odd k) so that the additions do not form one chain of dependent latencies.
+  template <int Step>
+  void solve_row(Index r, const Index* idx, const Scalar* l, Index count, Scalar* w) const {
+    Scalar s0 = w[3 * r], s1 = w[3 * r + 1], s2 = w[3 * r + 2];
+    Scalar t0 = 0, t1 = 0, t2 = 0;
+    for (; count >= 2; count -= 2, idx += 2 * Step, l += 2 * Step) {
+      const Scalar* wa = w + 3 * idx[0];
+      const Scalar* wb = w + 3 * idx[Step];
+      const Scalar la = l[0], lb = l[Step];
+      s0 -= la * wa[0], s1 -= la * wa[1], s2 -= la * wa[2];
+      t0 += lb * wb[0], t1 += lb * wb[1], t2 += lb * wb[2];
+    }
+    if (count == 1) {
+      const Scalar* wa = w + 3 * idx[0];
+      const Scalar la = l[0];
+      s0 -= la * wa[0], s1 -= la * wa[1], s2 -= la * wa[2];
+    }
+    const Scalar inv = inv_diag[r];
+    w[3 * r] = (s0 - t0) * inv;
+    w[3 * r + 1] = (s1 - t1) * inv;
+    w[3 * r + 2] = (s2 - t2) * inv;
+  }
+};
+
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+// The AVX2 + FMA rows: the same sums as LowerFactor::forward_row and backward_row, over the same
+// two accumulator sets, each holding a row of w (three values) in one register whose fourth lane
+// is zero (256 bits for double, 128 for float), each product added by one fused multiply-add.
+// - The forward substitution loads a row with one masked load. The back substitution reads rows
+//   it has just stored, and a load of a row stored as two narrower stores waits for the stores to
+//   reach the cache, so there a row is loaded as its first two values and its third: measured
+//   faster (docs/performance.md).
+// - A row is stored as its first two values and its third, never the fourth lane (the next
+//   row's first value).
+// Row3<Scalar>'s functions take and return vector registers; they are always inlined into the
+// AVX2 functions below, so GCC's note that such a signature's ABI depends on -mavx is moot.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+#define MASSSPRING_ROW3 MASSSPRING_TARGET_AVX2 __attribute__((always_inline)) static inline
+
+template <class Scalar>
+struct Row3;
+
+template <>
+struct Row3<double> {
+  using V = __m256d;
+  MASSSPRING_ROW3 V zero() { return _mm256_setzero_pd(); }
+  MASSSPRING_ROW3 V load(const double* p) {
+    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p)), _mm_load_sd(p + 2), 1);
+  }
+  MASSSPRING_ROW3 V load_masked(const double* p) {
+    return _mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0));
+  }
+  MASSSPRING_ROW3 void store(double* p, V v) {
+    _mm_storeu_pd(p, _mm256_castpd256_pd128(v));
+    _mm_store_sd(p + 2, _mm256_extractf128_pd(v, 1));
+  }
+  MASSSPRING_ROW3 V sub_product(const double* l, V x, V acc) {  // acc - l x
+    return _mm256_fnmadd_pd(_mm256_broadcast_sd(l), x, acc);
+  }
+  MASSSPRING_ROW3 V add_product(const double* l, V x, V acc) {  // acc + l x
+    return _mm256_fmadd_pd(_mm256_broadcast_sd(l), x, acc);
+  }
+  MASSSPRING_ROW3 V finish(V s, V t, double inv) {  // (s - t) inv
+    return _mm256_mul_pd(_mm256_sub_pd(s, t), _mm256_set1_pd(inv));
+  }
+};
+
+template <>
+struct Row3<float> {
+  using V = __m128;
+  MASSSPRING_ROW3 V zero() { return _mm_setzero_ps(); }
+  MASSSPRING_ROW3 V load(const float* p) {  // (x, y) through __m64 (may alias), then z
+    return _mm_movelh_ps(_mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(p)),
+                         _mm_load_ss(p + 2));
+  }
+  MASSSPRING_ROW3 V load_masked(const float* p) {
+    return _mm_maskload_ps(p, _mm_setr_epi32(-1, -1, -1, 0));
+  }
+  MASSSPRING_ROW3 void store(float* p, V v) {
+    _mm_storel_pi(reinterpret_cast<__m64*>(p), v);
+    _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
+  }
+  MASSSPRING_ROW3 V sub_product(const float* l, V x, V acc) {
+    return _mm_fnmadd_ps(_mm_broadcast_ss(l), x, acc);
+  }
+  MASSSPRING_ROW3 V add_product(const float* l, V x, V acc) {
+    return _mm_fmadd_ps(_mm_broadcast_ss(l), x, acc);
+  }
+  MASSSPRING_ROW3 V finish(V s, V t, float inv) {
+    return _mm_mul_ps(_mm_sub_ps(s, t), _mm_set1_ps(inv));
+  }
+};
+#undef MASSSPRING_ROW3
+
+template <class Scalar, class Index>
+MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
+                                              const Index* order, Index begin, Index end,
+                                              Scalar* w) {
+  using R = Row3<Scalar>;
+  for (Index q = begin; q < end; ++q) {
+    const Index i = order ? order[q] : q;
+    const Index* idx = f.row_inner + f.row_outer[i];
+    const Scalar* l = f.row_value + f.row_outer[i];
+    Index count = f.row_outer[i + 1] - f.row_outer[i];
+    auto s = R::load(w + 3 * i), t = R::zero();
+    for (; count >= 2; count -= 2, idx += 2, l += 2) {
+      s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
+      t = R::add_product(l + 1, R::load_masked(w + 3 * idx[1]), t);
+    }
+    if (count == 1) s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
+    R::store(w + 3 * i, R::finish(s, t, f.inv_diag[i]));
+  }
+}
+
+template <class Scalar, class Index>
+MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>& f,
+                                               const Index* order, Index begin, Index end,
+                                               Scalar* w) {
+  using R = Row3<Scalar>;
+  for (Index q = end - 1; q >= begin; --q) {
+    const Index j = order ? order[q] : q;
+    Index count = f.outer[j + 1] - 1 - f.outer[j];
+    const Index* idx = f.inner + f.outer[j + 1] - 1;  // the diagonal is at outer[j]
+    const Scalar* l = f.value + f.outer[j + 1] - 1;
+    auto s = R::load(w + 3 * j), t = R::zero();
+    for (; count >= 2; count -= 2, idx -= 2, l -= 2) {
+      s = R::sub_product(l, R::load(w + 3 * idx[0]), s);
+      t = R::add_product(l - 1, R::load(w + 3 * idx[-1]), t);
+    }
+    if (count == 1) s = R::sub_product(l, R::load(w + 3 * idx[0]), s);
+    R::store(w + 3 * j, R::finish(s, t, f.inv_diag[j]));
+  }
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+#endif
+
+/// @brief What LowerFactor needs beyond the column-compressed factor: the inverse diagonal and the
+/// row-compressed strict lower part (a second copy of the off-diagonal entries, built once).
+template <class Scalar>
+struct LowerFactorRows {
+  std::vector<Scalar> inv_diag;
+  std::vector<int> outer, inner;
+  std::vector<Scalar> value;
+
+  /// @brief From L's column-compressed arrays (diagonal first in each column). Allocates.
+  /// @return false when a diagonal entry is missing, not first, or its inverse is not finite.
+  bool build(int n, const int* col_outer, const int* col_inner, const Scalar* col_value) {
+    inv_diag.assign(std::size_t(n), Scalar(0));
+    outer.assign(std::size_t(n) + 1, 0);
+    for (int j = 0; j < n; ++j) {
+      const int first = col_outer[j];
+      if (first >= col_outer[j + 1] || col_inner[first] != j) return false;
+      inv_diag[std::size_t(j)] = Scalar(1) / col_value[first];
+      if (!std::isfinite(double(inv_diag[std::size_t(j)]))) return false;
+      for (int p = first + 1; p < col_outer[j + 1]; ++p) ++outer[std::size_t(col_inner[p]) + 1];
+    }
+    for (int i = 0; i < n; ++i) outer[std::size_t(i) + 1] += outer[std::size_t(i)];
+    inner.resize(std::size_t(outer[std::size_t(n)]));
+    value.resize(inner.size());
+    std::vector<int> next(outer.begin(), outer.end() - 1);
+    for (int j = 0; j < n; ++j)  // columns in order: each row's column indices come out ascending
+      for (int p = col_outer[j] + 1; p < col_outer[j + 1]; ++p) {
+        const auto q = std::size_t(next[std::size_t(col_inner[p])]++);
+        inner[q] = j;
+        value[q] = col_value[p];
+      }
+    return true;
+  }
+
+  std::vector<int> schedule, part_start;  // see LowerFactor::schedule; empty: none
+
+  /// False: view() never selects the AVX2 rows (for comparisons; default true).
+  bool wide = true;
+
+  /// @brief Splits the rows over `parts` threads (>= 2) along the elimination tree of L (column
+  /// j's parent is the row of its first off-diagonal entry): the tree is opened from its roots,
+  /// always at the subtree of most entries, the open subtrees are dealt to the parts
+  /// largest-first, each to the part with the fewest entries so far (LPT), and of these splits the
+  /// one whose top plus largest part has the fewest entries is kept. Cost O(n) per split tried,
+  /// at most 256 tried (opening a chain node is not a try); allocates. Call after build() with
+  /// the same arrays.
+  void plan_threads(int parts, int n, const int* col_outer, const int* col_inner) {
+    schedule.clear();
+    part_start.clear();
+    if (parts < 2 || n < 2) return;
+    const auto un = std::size_t(n);
+    std::vector<int> parent(un, -1);
+    std::vector<double> work(un), subtree(un);
+    for (int j = 0; j < n; ++j) {
+      if (col_outer[j + 1] - col_outer[j] > 1) parent[std::size_t(j)] = col_inner[col_outer[j] + 1];
+      work[std::size_t(j)] = subtree[std::size_t(j)] = double(col_outer[j + 1] - col_outer[j]);
+    }
+    for (int j = 0; j < n; ++j)  // a parent's index is above its children's
+      if (parent[std::size_t(j)] >= 0)
+        subtree[std::size_t(parent[std::size_t(j)])] += subtree[std::size_t(j)];
+    std::vector<std::vector<int>> children(un);
+    std::vector<int> open;  // roots of the open subtrees
+    for (int j = 0; j < n; ++j)
+      (parent[std::size_t(j)] >= 0 ? children[std::size_t(parent[std::size_t(j)])] : open)
+          .push_back(j);
+    // label: -1 top, else the part; decided for the open subtrees' roots by the best split.
+    std::vector<int> label(un, -2), best_label;
+    double top = 0, best = 0;
+    const auto by_size = [&](int a, int b) {
+      return subtree[std::size_t(a)] > subtree[std::size_t(b)];
+    };
+    // Opening a chain (one child) changes nothing to deal out: only splits with at least `parts`
+    // open subtrees are evaluated, at most 256 of them.
+    for (int tried = 0; tried < 256 && !open.empty();) {
+      std::sort(open.begin(), open.end(), by_size);
+      if (int(open.size()) >= parts) {
+        ++tried;
+        std::vector<double> load(std::size_t(parts), 0.0);
+        std::vector<int> assign(open.size());
+        for (std::size_t r = 0; r < open.size(); ++r) {
+          const auto least = std::size_t(std::min_element(load.begin(), load.end()) - load.begin());
+          load[least] += subtree[std::size_t(open[r])];
+          assign[r] = int(least);
+        }
+        const double makespan = top + *std::max_element(load.begin(), load.end());
+        if (best_label.empty() || makespan < best) {
+          best = makespan;
+          best_label = label;
+          for (std::size_t r = 0; r < open.size(); ++r)
+            best_label[std::size_t(open[r])] = assign[r];
+        }
+      }
+      const int widest = open.front();  // open the subtree of most entries
+      if (children[std::size_t(widest)].empty()) break;
+      open.erase(open.begin());
+      label[std::size_t(widest)] = -1;
+      top += work[std::size_t(widest)];
+      for (const int c : children[std::size_t(widest)]) open.push_back(c);
+    }
+    if (best_label.empty()) {  // a single chain: nothing to share, all in the top
+      best_label.assign(un, -1);
+    }
+    for (int j = n - 1; j >= 0; --j)  // the rest of each subtree takes its root's label
+      if (best_label[std::size_t(j)] == -2)
+        best_label[std::size_t(j)] = best_label[std::size_t(parent[std::size_t(j)])];
+    part_start.assign(std::size_t(parts) + 2, 0);
+    for (int j = 0; j < n; ++j) {
+      const int l = best_label[std::size_t(j)];
+      ++part_start[std::size_t(l < 0 ? parts : l) + 1];
+    }
+    for (int t = 0; t <= parts; ++t) part_start[std::size_t(t) + 1] += part_start[std::size_t(t)];
+    schedule.resize(std::size_t(n));
+    std::vector<int> next(part_start.begin(), part_start.end() - 1);
+    for (int j = 0; j < n; ++j) {
+      const int l = best_label[std::size_t(j)];
+      schedule[std::size_t(next[std::size_t(l < 0 ? parts : l)]++)] = j;
+    }
+  }
+
+  /// @brief Bytes held (inverse diagonal, the row copy and the schedule).
+  [[nodiscard]] std::size_t bytes() const {
+    return inv_diag.size() * sizeof(Scalar) +
+           (outer.size() + inner.size() + schedule.size() + part_start.size()) * sizeof(int) +
+           value.size() * sizeof(Scalar);
+  }
+
+  /// @brief The view over these and the column-compressed arrays.
+  [[nodiscard]] LowerFactor<Scalar, int> view(int n, const int* col_outer, const int* col_inner,
+                                              const Scalar* col_value) const {
+    LowerFactor<Scalar, int> v{
+        n,           col_outer, col_inner, col_value, inv_diag.data(), outer.data(), inner.data(),
+        value.data()};
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    v.wide = wide && cpu_has_avx2_fma();
+#endif
+    if (!part_start.empty()) {
+      v.schedule = schedule.data();
+      v.part_start = part_start.data();
+      v.parts = int(part_start.size()) - 2;
+    }
+    return v;
+  }
+};
+
+}  // namespace detail
+}  // namespace massspring

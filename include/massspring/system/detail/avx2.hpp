@@ -1,0 +1,32 @@
+#pragma once
+/// @file
+/// @brief The AVX2 + FMA code paths: compiled with a target attribute, chosen at run time.
+///
+/// On x86-64 with GCC or Clang, the hot loops that gain from 256-bit vectors (the substitutions
+/// with the factor of Q, the spring pass's square roots and divisions) have a version compiled
+/// for AVX2 and FMA next to the baseline (SSE2) one, and run it when the CPU has both, whatever
+/// the compiler's -m flags. Defining MASSSPRING_NO_AVX2 before including any massspring header
+/// leaves those versions out.
+
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(MASSSPRING_NO_AVX2)
+/// Defined when the AVX2 + FMA versions are compiled in.
+#define MASSSPRING_HAVE_AVX2_PATH 1
+/// The attribute of a function compiled for AVX2 and FMA.
+#define MASSSPRING_TARGET_AVX2 __attribute__((target("avx2,fma")))
+#include <immintrin.h>
+#endif
+
+namespace massspring::detail {
+
+/// @brief True when the AVX2 + FMA versions are compiled in and the CPU runs them (checked
+/// once).
+inline bool cpu_has_avx2_fma() {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return has;
+#else
+  return false;
+#endif
+}
+
+}  // namespace massspring::detail
