@@ -239,7 +239,8 @@ def main(perf):
         fill = [num(r[5]) / (num(r[1]) * math.log2(num(r[1]))) for r in sweep]
         scale_line = (
             f"Across the sweep {sweep[0][0]}^2 to {sweep[-1][0]}^2, ns per iteration / (n log2 n) ranges "
-            f"from {min(per):.3g} to {max(per):.3g}: **{max(per) / min(per):.2f}x** (target <= 1.3x). "
+            f"from {min(per):.3g} to {max(per):.3g}: **{max(per) / min(per):.3f}x** (target <= 1.3x: "
+            f"{'met' if max(per) / min(per) <= 1.3 else 'not met'}). "
             f"The factor's own growth, nnz(L) / (n log2 n), ranges from {min(fill):.3g} to "
             f"{max(fill):.3g} ({max(fill) / min(fill):.2f}x), with the order `FillOrdering::Auto` takes "
             f"(AMD up to about 81^2, nested dissection above): the fill of both grows faster than "
