@@ -121,8 +121,8 @@ NOTES = """
   throwaway program timing each substitution of the cloth sweep's factors; the forward one gained
   from them, 2.22 -> 2.02 ms at 256^2). Throwaway timings of one solve, SSE2 -> AVX2: 28 -> 26
   us at 32^2, 148 -> 132 us at 64^2, 763 -> 674 us at 128^2, 4.35 -> 3.70 ms at 256^2, 21.0 ->
-  18.2 ms at 512^2. The project's own figures are in the AVX2 table above. The fused roundings change
-  results in the last bits, so trajectories are the same bit for bit only between machines that
+  18.2 ms at 512^2. The project's own figures are in the AVX2 table above. The fused roundings
+  change results in the last bits, so trajectories are the same bit for bit only between machines that
   take the same path (`options.avx2 = false` takes SSE2 everywhere); one and two threads still
   agree bit for bit on either path.
 - **Tried this session and dropped** (throwaway programs on the cloth sweep's factors, not kept):
@@ -142,8 +142,9 @@ NOTES = """
 - **float** gains from the 128-bit AVX2 rows as much as double from the 256-bit ones: float
   floors 0.50 -> 0.405 ms on the curtain, 0.42 -> 0.36 on skirt, 0.107 -> 0.090 on flag (old and
   new `bench_fast_mass_spring` interleaved twice, `Floor/SparseFloat`), which leaves them a few
-  percent below double's (the float table above). The substitution is bound by the index loads and the
-  latency of the gathers, not by the bytes of the values, so halving those bytes buys little.
+  percent below double's (the float table above). The substitution is bound by the index loads
+  and the latency of the gathers, not by the bytes of the values, so halving those bytes buys
+  little.
 - **The order of elimination.** `FillOrdering::Auto` (the default) counts the factor's nonzeros
   for two orders before factorising (elimination tree and row subtrees, `cholesky_nonzeros`) and
   factorises with the smaller: Eigen's AMD, or geometric nested dissection of the rest positions
