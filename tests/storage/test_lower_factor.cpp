@@ -96,7 +96,8 @@ TEST_CASE_TEMPLATE("LowerFactor: a substitution writes three values per row, nev
                                                                                       3);
   const auto& l = llt.factor();  // of P Q P^T: w is in the factor's order
   const Columns lltx = l * (l.transpose() * x);
-  const double tol = std::is_same_v<Scalar, float> ? 1e-5 : 1e-12;
+  // Measured: 1.6e-7 (float) and 3e-16 (double) on either path; about ten times that.
+  const double tol = std::is_same_v<Scalar, float> ? 2e-6 : 3e-15;
   CHECK((lltx - b).norm() <= tol * b.norm());
 }
 
