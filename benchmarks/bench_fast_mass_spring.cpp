@@ -17,13 +17,13 @@
 // double, penalty pins as the seed), SparseExact / SparseFloat (ours, exact pins, double / float),
 // Chebyshev / Anderson (ours, accelerated, as many iterations as reach the error of 50 plain ones),
 // Seed (SeedFastMassSpring), EigenSolve (Eigen's SimplicialLLT::solve on the seed's factor),
-// SparseSSE2 (ours with options.avx2 = false: the SSE2 substitution, where Sparse takes the AVX2
-// + FMA one when the CPU has it).
+// SparseSSE2 (ours with options.avx2 = false: the SSE2 substitution and the baseline spring pass,
+// where Sparse takes the AVX2 + FMA ones when the CPU has them).
 // Counters: points, springs, nnz_L (stored entries of the factor of Q) and iterations (local-global
 // iterations per step: for ours the mean step() reported, elsewhere the configured 50). After the
 // run, summary tables compare ours with the seed per scene (medians of the repetitions), with each
 // iteration's time as a multiple of the floor; the accelerated solvers' time to the error of 50
-// plain iterations; the AVX2 substitution against the SSE2 one; float against double.
+// plain iterations; the AVX2 code paths against the SSE2 ones; float against double.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -571,12 +571,13 @@ void register_benchmarks() {
     });
     reg(repeated, "Floor", "Sparse",
         [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kSeedLike); });
-    // The SSE2 substitution (options.avx2 = false): what the AVX2 + FMA one gains.
+    // options.avx2 = false (the SSE2 substitution; the step also the baseline spring pass): what
+    // the AVX2 + FMA paths gain.
     reg(repeated, "Floor", "SparseSSE2",
         [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kSse2); });
     reg(repeated, "Step", "SparseSSE2", [sc](benchmark::State& st) {
       bm_step(st, *sc, *sc->sparse, kSse2, static_cast<const SparseSystem*>(nullptr),
-              "Sparse, SSE2 substitution: one step");
+              "Sparse, SSE2 substitution and spring pass: one step");
     });
     reg(repeated, "Floor", "SparseExact",
         [sc](benchmark::State& st) { bm_floor(st, *sc, *sc->sparse, kExact); });
@@ -779,8 +780,8 @@ void print_summary(const RecordingReporter& r) {
   }
 
   std::printf(
-      "\n## AVX2 + FMA substitution against SSE2 (options.avx2), double, %d iterations, medians "
-      "[ms]%s\n\n",
+      "\n## AVX2 + FMA against SSE2 (options.avx2), double, %d iterations, medians [ms]: the floor "
+      "is the substitutions alone, the step also has the spring pass%s\n\n",
       kIterations,
       massspring::detail::cpu_has_avx2_fma() ? "" : " (this CPU has no AVX2 + FMA: both SSE2)");
   std::printf(

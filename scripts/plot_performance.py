@@ -74,7 +74,7 @@ NOTES = """
   their lower row, whose share is summed in registers), the energy evaluation in every iteration
   (only where the report or the tolerance needs it), and the copy of the solution. What is left
   above the floor is the spring pass itself: about 4 ns per spring on this machine (4.5 before
-  the pairs described below), most of it the square root and the division. Tried and dropped
+  the pairs described below, about 3 with the AVX2 scatter pass further down). Tried and dropped
   because they measured slower: fusing the spring pass into the forward substitution (column
   form: flag 1.63 against 1.40 floors; row form: curtain 1.47 against 1.33), batching square roots
   and divisions through Eigen packets (chunks of 256 springs: 15-25% slower with SSE2, 5-10%
@@ -125,7 +125,7 @@ NOTES = """
   change results in the last bits, so trajectories are the same bit for bit only between machines that
   take the same path (`options.avx2 = false` takes SSE2 everywhere); one and two threads still
   agree bit for bit on either path.
-- **Tried this session and dropped** (throwaway programs on the cloth sweep's factors, not kept):
+- **Tried and dropped** (throwaway programs on the cloth sweep's factors, not kept):
   - *Supernodal storage* (runs of columns with one pattern stored once, without a row index per
     entry; 56% of nnz(L) at 512^2 is in runs at least 16 wide). As dense blocks read by both
     substitutions it was up to 2x slower in the back substitution; as segments of the row copy
@@ -135,10 +135,30 @@ NOTES = """
     latency of each row's sum, not by the bytes of the index arrays.
   - *Software prefetch* of the gathered rows 8 to 32 entries ahead: 5-10% slower at every size.
   - *No branch for the odd last entry* of a row (a multiplication by 0 instead): no change.
-  - *The spring pass four springs at a time* (one 256-bit `vsqrtpd` and `vdivpd`): the divider
-    alone takes 0.94 ns per value against 1.87 in pairs (throwaway program), but called out of
-    line from the baseline-compiled spring pass (an AVX2 function cannot be inlined into it) the
-    curtain's step went from 27 to 36-38 ms. Compiling the whole pass twice would be needed.
+  - *The spring pass four springs at a time* (one 256-bit `vsqrtpd` and `vdivpd`), called out of
+    line from the baseline pass: the curtain's step went from 27 to 36-38 ms.
+- **The AVX2 scatter pass** (`scatter_pass_avx2`, double, same switch `options.avx2`). Compiling
+  the pass for AVX2 with the same scalar code and four-wide square roots and divisions bought
+  nothing (curtain step 27.3-27.6 ms either way), so the pass is not bound by the divider. What
+  paid was fewer instructions per spring: a point's three coordinates in one 256-bit register
+  (masked load), |d|^2 for four springs through two `vhaddpd`, and each spring's share as one
+  multiplication, one fused multiply-add into its row's run sum (a stored 0/1 instead of the
+  comparison) and one subtraction from the other row. It does the baseline's operations in the
+  baseline's order, so results are the same bit for bit (tested through Dense storage, whose
+  solve has no AVX2 path). Throwaway driver timing 5 x 20 steps of the curtain, best of 5, old
+  and new binaries alternated twice: 27.3 -> 26.0 ms per step of 50 iterations, 541 -> 515 us per
+  iteration. Removing, one at a time, the divisions, the run-sum stores or the subtraction from
+  row b from that pass (throwaway builds) saved 15-20 us each of its ~100 us: no one part decides.
+- **Tried this session and dropped** (throwaway builds, not kept):
+  - *The local step fused with the forward substitution, row by row*: row r substituted as soon
+    as the springs of every run up to row r (or up to row r + 1, 3 or 8: a lag) are in, the AVX2
+    row inlined into the same loop, so that the substitution's latency-bound sums could overlap
+    the springs' arithmetic. Curtain step 28.7-29.8 ms fused against 27.6-29.6 unfused; lags
+    changed nothing beyond the noise.
+  - *Blocks of 64 springs, lengths first, then the scatter* (to free the divisions from the
+    scatter's dependences): 30 against 27.5 ms.
+  - *Two interleaved streams* over the two halves of the springs (two independent run-sum
+    chains): 26.3 against 26.1 ms with one.
 - **float** gains from the 128-bit AVX2 rows as much as double from the 256-bit ones: float
   floors 0.50 -> 0.405 ms on the curtain, 0.42 -> 0.36 on skirt, 0.107 -> 0.090 on flag (old and
   new `bench_fast_mass_spring` interleaved twice, `Floor/SparseFloat`), which leaves them a few
@@ -325,12 +345,13 @@ iterations on its first step, untimed here like any precompute).
 
 {table_text(bench, "acceleration")}
 
-## The AVX2 + FMA substitution against SSE2 (`options.avx2`)
+## AVX2 + FMA against SSE2 (`options.avx2`)
 
-`Floor/Sparse` and `Step/Sparse` take the AVX2 + FMA substitution when the CPU has it (this one
-does); `Floor/SparseSSE2` and `Step/SparseSSE2` are the same with `options.avx2 = false`.
+`Floor/Sparse` and `Step/Sparse` take the AVX2 + FMA substitutions when the CPU has them (this one
+does), and the step also the AVX2 spring pass (double); `Floor/SparseSSE2` and `Step/SparseSSE2`
+are the same with `options.avx2 = false`.
 
-{table_text(bench, "AVX2 + FMA substitution")}
+{table_text(bench, "AVX2 + FMA against")}
 
 ## float against double (exact pins)
 

@@ -22,6 +22,7 @@
 #include "massspring/forces/springs.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/nested_dissection.hpp"
+#include "massspring/system/detail/avx2.hpp"
 #include "massspring/system/detail/validate.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
@@ -157,13 +158,13 @@ struct FastMassSpringOptions {
   /// crossover measured on 2 cores. A change takes effect at the next step (planning the split
   /// allocates, once).
   int threads = 1;
-  /// @brief Substitute with AVX2 and FMA instructions where the CPU has them (Sparse storage and
-  /// CHOLMOD; GCC or Clang on x86-64; checked at run time). Default true: see
-  /// docs/performance.md for what it gains. Results differ from the SSE2 substitution's in the
-  /// last bits (fused multiply-adds), so a trajectory is the same bit for bit only between
-  /// machines that take the same path: false takes the SSE2 one everywhere. Ignored by storages
-  /// without the choice (Dense). Compiling with MASSSPRING_NO_AVX2 defined leaves the AVX2 code
-  /// out.
+  /// @brief Use AVX2 and FMA instructions where the CPU has them (GCC or Clang on x86-64; checked
+  /// at run time): in the substitutions (Sparse storage and CHOLMOD) and in the local step's pass
+  /// over the springs (double). Default true: see docs/performance.md for what it gains. The
+  /// substitutions' results differ from the SSE2 ones' in the last bits (fused multiply-adds), so
+  /// a trajectory is the same bit for bit only between machines that take the same path: false
+  /// takes the SSE2 code everywhere. The spring pass gives the same bits on either path.
+  /// Compiling with MASSSPRING_NO_AVX2 defined leaves the AVX2 code out.
   bool avx2 = true;
   /// @brief The factor's elimination order (default Auto: the one with fewer nonzeros of nested
   /// dissection and the Cholesky type's own). Sparse storage only: with a Cholesky that takes no
@@ -396,13 +397,14 @@ class FastMassSpring {
   template <class C>
   struct has_avx2<C, std::void_t<decltype(std::declval<C&>().set_avx2(true))>> : std::true_type {};
 
-  // The solver's threads and AVX2 choice to the options' (SparseCholesky::set_threads checks for
-  // OpenMP).
+  // The solver's threads and the AVX2 choice (substitutions, scatter pass) to the options'
+  // (SparseCholesky::set_threads checks for OpenMP).
   void apply_threads() {
     if constexpr (has_threads<Cholesky>::value) {
       if (llt_.threads() != options.threads) llt_.set_threads(options.threads);
     }
     if constexpr (has_avx2<Cholesky>::value) llt_.set_avx2(options.avx2);
+    wide_ = std::is_same_v<Scalar, double> && options.avx2 && detail::cpu_has_avx2_fma();
   }
 
   // ---- precompute -------------------------------------------------------------------------------
@@ -524,6 +526,12 @@ class FastMassSpring {
     const Eigen::Index size = 3 * Eigen::Index(nx_), free_size = 3 * Eigen::Index(nr_);
     for (Buffer& b : buffers_) b.setZero(size);
     run_sum_.setZero(size);
+    if constexpr (std::is_same_v<Scalar, double>) {  // scatter_pass_avx2's
+      run_sum4_.setZero(4 * Eigen::Index(nx_));
+      keep_.resize(m);
+      for (int s = 0; s < m; ++s)
+        keep_(s) = Scalar(s > 0 && ends_[std::size_t(s)].a == ends_[std::size_t(s - 1)].a);
+    }
     rhs0_.resize(free_size);
     inertial_.resize(free_size);
     force_.resize(free_size);
@@ -631,6 +639,10 @@ class FastMassSpring {
   // of its run when the sum was added there. Rows that start no run keep run_sum_ at 0.
   template <bool Scatter, bool Energy>
   double spring_pass(const Scalar* x, Scalar* w) {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    if constexpr (Scatter && std::is_same_v<Scalar, double>)
+      if (wide_) return scatter_pass_avx2<Energy>(x, w);
+#endif
     const SpringEnds* sp = ends_.data();
     const Scalar* k = stiffness_.data();
     const Scalar* r = rest_.data();
@@ -693,6 +705,117 @@ class FastMassSpring {
     }
     return energy / 2;
   }
+
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+  // The scatter pass (spring_pass<true, Energy>) compiled for AVX2, doubles only. A point's three
+  // coordinates are one 256-bit register (fourth lane 0); four springs share one vsqrtpd and one
+  // vdivpd; each spring's share k r d / |d| is one multiplication, added to row a's run sum by one
+  // fused multiply-add (acc * keep + s, keep_ = 1 inside a run, 0 where one starts: exact either
+  // way) and subtracted from row b by one subtraction. The same operations in the same order as
+  // the baseline pass, |d|^2 summed as (x^2 + y^2) + z^2: the same results, bit for bit (tested
+  // through Dense storage, whose solve has no AVX2 path). Run sums go to run_sum4_, four values
+  // per row, so that a whole register is stored. Measured 5-8% off the curtain's and the flag's
+  // step (docs/performance.md); float stays on the baseline pass.
+  template <bool Energy>
+  MASSSPRING_TARGET_AVX2 double scatter_pass_avx2(const double* x, double* w) {
+    const int m = int(ends_.size());
+    double energy = 0;
+    __m256d acc = _mm256_setzero_pd();
+    int e = 0;
+    for (; e + 3 < m; e += 4) springs4_avx2<Energy, 4>(x, w, e, acc, energy);
+    switch (m - e) {
+      case 3:
+        springs4_avx2<Energy, 3>(x, w, e, acc, energy);
+        break;
+      case 2:
+        springs4_avx2<Energy, 2>(x, w, e, acc, energy);
+        break;
+      case 1:
+        springs4_avx2<Energy, 1>(x, w, e, acc, energy);
+        break;
+      default:
+        break;
+    }
+    const double* sums = run_sum4_.data();
+    for (int r = 0; r < nx_; ++r)
+      for (int c = 0; c < 3; ++c) w[3 * r + c] += sums[4 * r + c];
+    return energy / 2;
+  }
+
+  // p[0 .. 3]; for N < 4, lanes N .. 3 repeat p[N - 1] (never read past the array).
+  template <int N>
+  MASSSPRING_TARGET_AVX2 MASSSPRING_ALWAYS_INLINE static __m256d load4(const double* p) {
+    if constexpr (N == 4)
+      return _mm256_loadu_pd(p);
+    else
+      return _mm256_set_pd(p[std::min(3, N - 1)], p[std::min(2, N - 1)], p[std::min(1, N - 1)],
+                           p[0]);
+  }
+
+  // Springs e .. e + N - 1 (N <= 4) of scatter_pass_avx2; lanes N .. 3 repeat spring e, unused.
+  template <bool Energy, int N>
+  MASSSPRING_TARGET_AVX2 MASSSPRING_ALWAYS_INLINE void springs4_avx2(const double* x, double* w,
+                                                                     int e, __m256d& acc,
+                                                                     double& energy) {
+    const SpringEnds* sp = ends_.data() + e;
+    const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
+    __m256d d[4];
+    for (int i = 0; i < 4; ++i) {
+      const SpringEnds& s = sp[i < N ? i : 0];
+      d[i] = _mm256_sub_pd(_mm256_maskload_pd(x + 3 * s.a, three),
+                           _mm256_maskload_pd(x + 3 * s.b, three));
+    }
+    // hadd(p, q) = (p0 + p1, q0 + q1, p2 + p3, q2 + q3), and p3 = q3 = 0: the squared lengths'
+    // x^2 + y^2 in the low halves, z^2 in the high ones.
+    const __m256d t0 = _mm256_hadd_pd(_mm256_mul_pd(d[0], d[0]), _mm256_mul_pd(d[1], d[1]));
+    const __m256d t1 = _mm256_hadd_pd(_mm256_mul_pd(d[2], d[2]), _mm256_mul_pd(d[3], d[3]));
+    const __m256d sq =
+        _mm256_add_pd(_mm256_permute2f128_pd(t0, t1, 0x20), _mm256_permute2f128_pd(t0, t1, 0x31));
+    const __m256d len = _mm256_sqrt_pd(sq);
+    // The clamp of detail::lengths2: f is finite, and unused, where sq is 0 or NaN.
+    const __m256d f =
+        _mm256_div_pd(load4<N>(kr_.data() + e), _mm256_max_pd(len, _mm256_set1_pd(0x1p-537)));
+    if constexpr (Energy) {
+      const __m256d stretch = _mm256_sub_pd(len, load4<N>(rest_.data() + e));
+      alignas(32) double lane[4];
+      _mm256_store_pd(
+          lane, _mm256_mul_pd(_mm256_mul_pd(load4<N>(stiffness_.data() + e), stretch), stretch));
+      for (int i = 0; i < N; ++i) energy += lane[i];
+    }
+    const int positive = _mm256_movemask_pd(_mm256_cmp_pd(sq, _mm256_setzero_pd(), _CMP_GT_OQ));
+    const double* keep = keep_.data() + e;
+    double* sums = run_sum4_.data();
+    for (int i = 0; i < N; ++i) {
+      __m256d s;  // k r / |d| times d (the lane broadcast needs an immediate)
+      switch (i) {
+        case 0:
+          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0x00), d[0]);
+          break;
+        case 1:
+          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0x55), d[1]);
+          break;
+        case 2:
+          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0xAA), d[2]);
+          break;
+        default:
+          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0xFF), d[3]);
+          break;
+      }
+      if (!(positive >> i & 1))  // zero length (or NaN): k r along the direction kept
+        s = _mm256_mul_pd(_mm256_set1_pd(kr_[e + i]),
+                          _mm256_maskload_pd(direction_.data() + 3 * (e + i), three));
+      acc = _mm256_fmadd_pd(acc, _mm256_broadcast_sd(keep + i), s);
+      _mm256_storeu_pd(sums + 4 * sp[i].a, acc);
+      // Row b as its first two values and its third (it may have just been stored that way).
+      double* wb = w + 3 * sp[i].b;
+      const __m256d b =
+          _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(wb)), _mm_load_sd(wb + 2), 1);
+      const __m256d v = _mm256_sub_pd(b, s);
+      _mm_storeu_pd(wb, _mm256_castpd256_pd128(v));
+      _mm_store_sd(wb + 2, _mm256_extractf128_pd(v, 1));
+    }
+  }
+#endif
 
   // With Write, w = rhs0 on the free rows; with Energy, returns the iterate-dependent energy other
   // than the springs' (inertia, external force, penalty) at x, in the same pass.
@@ -1074,8 +1197,11 @@ class FastMassSpring {
   std::array<Buffer, 5> buffers_;
   Buffer rhs0_, inertial_, force_, mass_h2_, targets_, penalty_targets_, direction_;
   Buffer stiffness_, rest_, kr_;
-  Buffer run_sum_;   // per row: the sum of its run of springs (spring_pass), 0 for rows with none
-  Scalar drag_ = 0;  // sum of the system's LinearDrag coefficients [N s/m]
+  bool wide_ = false;  // scatter_pass_avx2 (double, options.avx2, a CPU with AVX2 and FMA)
+  Buffer keep_;        // per sorted spring: 1 when it continues the previous one's run, else 0
+  Buffer run_sum4_;    // run_sum_ for scatter_pass_avx2: four values per row
+  Buffer run_sum_;     // per row: the sum of its run of springs (spring_pass), 0 for rows with none
+  Scalar drag_ = 0;    // sum of the system's LinearDrag coefficients [N s/m]
   bool other_terms_ = false;   // the system has force terms other than drag
   Points<Scalar> term_force_;  // their force at the step's start
   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> df_, dg_;

@@ -16,6 +16,13 @@
 #include <immintrin.h>
 #endif
 
+#if defined(__GNUC__)
+/// A function the compiler must inline (the pieces of a hot loop, also into its AVX2 version).
+#define MASSSPRING_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define MASSSPRING_ALWAYS_INLINE inline
+#endif
+
 namespace massspring::detail {
 
 /// @brief True when the AVX2 + FMA versions are compiled in and the CPU runs them (checked
