@@ -1164,6 +1164,8 @@ TEST_CASE("options.avx2: the AVX2 scatter pass gives the baseline pass's traject
         REQUIRE(rc.ok());
         CHECK(rb.iterations == rc.iterations);
         CHECK(rb.energy == rc.energy);
+        // From the energies the pass returned (the first and the last evaluated iterate).
+        CHECK(rb.relative_decrease == rc.relative_decrease);
       }
       CHECK(b.positions() == c.positions());
       CHECK(b.velocities() == c.velocities());

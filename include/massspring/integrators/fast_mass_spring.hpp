@@ -526,7 +526,8 @@ class FastMassSpring {
     const Eigen::Index size = 3 * Eigen::Index(nx_), free_size = 3 * Eigen::Index(nr_);
     for (Buffer& b : buffers_) b.setZero(size);
     run_sum_.setZero(size);
-    if constexpr (std::is_same_v<Scalar, double>) {  // scatter_pass_avx2's
+    // scatter_pass_avx2's buffers, only where it can run (options.avx2 may change later).
+    if (std::is_same_v<Scalar, double> && detail::cpu_has_avx2_fma()) {
       run_sum4_.setZero(4 * Eigen::Index(nx_));
       keep_.resize(m);
       for (int s = 0; s < m; ++s)
@@ -714,8 +715,9 @@ class FastMassSpring {
   // way) and subtracted from row b by one subtraction. The same operations in the same order as
   // the baseline pass, |d|^2 summed as (x^2 + y^2) + z^2: the same results, bit for bit (tested
   // through Dense storage, whose solve has no AVX2 path). Run sums go to run_sum4_, four values
-  // per row, so that a whole register is stored. Measured 5-8% off the curtain's and the flag's
-  // step (docs/performance.md); float stays on the baseline pass.
+  // per row, so that a whole register is stored. The curtain's step took 27.3 ms before and 26.0
+  // after (a throwaway driver, quoted in the notes of docs/performance.md); float stays on the
+  // baseline pass.
   template <bool Energy>
   MASSSPRING_TARGET_AVX2 double scatter_pass_avx2(const double* x, double* w) {
     const int m = int(ends_.size());
