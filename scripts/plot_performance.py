@@ -97,7 +97,7 @@ NOTES = """
 - **The floor itself got faster, which raised iteration / floor.** Both substitutions are now
   gathers read in one direction (`detail::LowerFactor`): the forward one by rows of a
   row-compressed copy of L, the back one by columns read from their last entry down, each sum split
-  over two accumulator sets. Before, the forward substitution scattered column by column and the
+  over two accumulator sets (four in the AVX2 rows, below). Before, the forward substitution scattered column by column and the
   back one read each column upward while walking the columns downward, which the prefetcher does
   not follow. One n x 3 solve, same machine, quiet: curtain 0.75 -> 0.51 ms, 64^2 cloth 0.19 ->
   0.14 ms, 256^2 cloth 8.8 -> 4.4 ms. The spring pass did not change, so it is now a larger
@@ -149,7 +149,7 @@ NOTES = """
   and new binaries alternated twice: 27.3 -> 26.0 ms per step of 50 iterations, 541 -> 515 us per
   iteration. Removing, one at a time, the divisions, the run-sum stores or the subtraction from
   row b from that pass (throwaway builds) saved 15-20 us each of its ~100 us: no one part decides.
-- **Tried this session and dropped** (throwaway builds, not kept):
+- **Tried with the AVX2 scatter pass and dropped** (throwaway builds, not kept):
   - *The local step fused with the forward substitution, row by row*: row r substituted as soon
     as the springs of every run up to row r (or up to row r + 1, 3 or 8: a lag) are in, the AVX2
     row inlined into the same loop, so that the substitution's latency-bound sums could overlap
@@ -159,6 +159,36 @@ NOTES = """
     scatter's dependences): 30 against 27.5 ms.
   - *Two interleaved streams* over the two halves of the springs (two independent run-sum
     chains): 26.3 against 26.1 ms with one.
+- **Four accumulator sets in the AVX2 rows.** Each row's sum in the AVX2 substitution is split
+  over four registers (entries 4k .. 4k + 3; the last count % 4 entries into the first) instead of
+  two, as the fused multiply-add's latency asks. A throwaway driver timing one n x 3 solve of the
+  factors FastMassSpring builds (best of many, the old and new headers, GCC 12 -O3): curtain
+  396 -> 365 us; cloth sweep 25.9 -> 25.7 us at 32^2, 131 -> 126 us at 64^2, 676 -> 631 us at
+  128^2, 3.64 -> 3.48 ms at 256^2, 17.8 -> 17.0 ms at 512^2; the curtain's step of 50 iterations
+  25.9 -> 24.2 ms. Since the spring pass did not change, iteration / floor rose (curtain 1.31 ->
+  1.33 in that driver). Built with clang++-14 the same change made the floor slower (429 -> 447
+  us): clang vectorises the four index multiplications (`vpmulld`, then `vpextrd` per entry).
+  GCC is the compiler the project builds and measures with; this is left as it is.
+- **-O2 builds.** GCC 12 at -O2 neither unrolled the AVX2 scatter pass's loops over four lanes
+  nor inlined the baseline pass's per-pair lambda, and kept their arrays of registers on the
+  stack. Both are now forced (`MASSSPRING_UNROLL`, `MASSSPRING_LAMBDA_ALWAYS_INLINE`). The
+  project's Release builds use -O3 and were not affected, but a user's -O2 build (CMake's
+  RelWithDebInfo, for one) was. The curtain's step of 50 iterations in a throwaway driver, -O2,
+  before -> after (-O3 after): double 28.4 -> 24.4 ms (24.1), float with exact pins 35.2 -> 23.7
+  ms (23.2), Chebyshev 39.5 -> 25.8 ms (25.6), Anderson 40.6 -> 29.4 ms (29.2).
+- **Tried with those and dropped** (throwaway builds and drivers, not kept):
+  - *Runs of consecutive column indices* (a row of L stored as runs of consecutive columns, no
+    index per entry; 6.7 entries per run at 32^2, 15.9 at 512^2): the solve was 0-47% slower at
+    every size with two or four accumulator sets (one more loop per run, and wide loads of rows
+    stored just before by narrower stores).
+  - *Without the run-sum chain* of the scatter pass (`acc = s`, wrong results, to time it): no
+    change, so the chain of fused multiply-adds is not what bounds the pass.
+  - *An approximate reciprocal square root* (`vrsqrt14pd` and two Newton steps instead of
+    `vsqrtpd` and `vdivpd`): no change.
+  - *A second scatter pass on warm data* in every iteration cost as much as the first (~104 us
+    on the curtain): the pass is not bound by cache misses there. On the 512^2 cloth, whose
+    arrays do not fit in the caches, the work outside the solve costs 6.7-7.0 ns per spring
+    against 3.3 at 32^2.
 - **float** gains from the 128-bit AVX2 rows as much as double from the 256-bit ones: float
   floors 0.50 -> 0.405 ms on the curtain, 0.42 -> 0.36 on skirt, 0.107 -> 0.090 on flag (old and
   new `bench_fast_mass_spring` interleaved twice, `Floor/SparseFloat`), which leaves them a few

@@ -655,9 +655,10 @@ class FastMassSpring {
     int previous = -1;
     Scalar acc0 = 0, acc1 = 0, acc2 = 0;  // k_e r_e d_e / |d_e| summed over row a's run so far
     // Springs e and e + 1 (N = 2), or the odd last one (N = 1).
-    const auto springs_at = [&](int e, auto lanes) {
+    const auto springs_at = [&](int e, auto lanes) MASSSPRING_LAMBDA_ALWAYS_INLINE {
       constexpr int N = decltype(lanes)::value;
       Scalar d[2][3], sq[2], len[2], f[2], num[2];
+      MASSSPRING_UNROLL
       for (int i = 0; i < 2; ++i) {
         const int q = e + (i < N ? i : 0);  // N = 1: the second lane is not used
         const SpringEnds& s = sp[q];
@@ -668,6 +669,7 @@ class FastMassSpring {
         sq[i] = d[i][0] * d[i][0] + d[i][1] * d[i][1] + d[i][2] * d[i][2];
       }
       detail::lengths2(sq, num, len, f);  // f = k r / |d| (Scatter) or 1 / |d|
+      MASSSPRING_UNROLL
       for (int i = 0; i < N; ++i) {
         const SpringEnds& s = sp[e + i];
         if constexpr (Energy) {
@@ -762,6 +764,7 @@ class FastMassSpring {
     const SpringEnds* sp = ends_.data() + e;
     const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
     __m256d d[4];
+    MASSSPRING_UNROLL
     for (int i = 0; i < 4; ++i) {
       const SpringEnds& s = sp[i < N ? i : 0];
       d[i] = _mm256_sub_pd(_mm256_maskload_pd(x + 3 * s.a, three),
@@ -782,11 +785,13 @@ class FastMassSpring {
       alignas(32) double lane[4];
       _mm256_store_pd(
           lane, _mm256_mul_pd(_mm256_mul_pd(load4<N>(stiffness_.data() + e), stretch), stretch));
+      MASSSPRING_UNROLL
       for (int i = 0; i < N; ++i) energy += lane[i];
     }
     const int positive = _mm256_movemask_pd(_mm256_cmp_pd(sq, _mm256_setzero_pd(), _CMP_GT_OQ));
     const double* keep = keep_.data() + e;
     double* sums = run_sum4_.data();
+    MASSSPRING_UNROLL
     for (int i = 0; i < N; ++i) {
       __m256d s;  // k r / |d| times d (the lane broadcast needs an immediate)
       switch (i) {

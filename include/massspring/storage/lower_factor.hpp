@@ -40,15 +40,16 @@ MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>&
 /// Both substitutions are gathers (a row's sum over the rows already solved, held in registers):
 /// the forward one walks the row copy upward, the back one walks the columns downward, each
 /// column from its last entry to its first, so that every array is read in one direction only and
-/// the hardware prefetcher follows it. Each sum is split over two sets of accumulators, so that the
-/// additions do not form one chain of dependent latencies. On the 2.6 GHz EPYC of the project's
+/// the hardware prefetcher follows it. Each sum is split over two sets of accumulators (four in the
+/// AVX2 rows), so that the additions do not form one chain of dependent latencies. On the 2.6 GHz
+/// EPYC of the project's
 /// measurements this halves the solve of a 256 x 256 cloth against a column-oriented (scatter)
 /// forward substitution and a back substitution reading each column upward (see
 /// docs/performance.md).
 ///
 /// forward_row() and backward_row() are the baseline (SSE2) rows. forward_rows(), backward_rows()
 /// and everything built on them take the AVX2 + FMA rows instead when `wide` is set: the same
-/// sums, rounded once per product.
+/// sums, rounded once per product and split four ways instead of two.
 template <class Scalar, class Index>
 struct LowerFactor {
   Index n = 0;
@@ -172,9 +173,13 @@ struct LowerFactor {
 };
 
 #ifdef MASSSPRING_HAVE_AVX2_PATH
-// The AVX2 + FMA rows: the same sums as LowerFactor::forward_row and backward_row, over the same
-// two accumulator sets, each holding a row of w (three values) in one register whose fourth lane
-// is zero (256 bits for double, 128 for float), each product added by one fused multiply-add.
+// The AVX2 + FMA rows: the same sums as LowerFactor::forward_row and backward_row, over four
+// accumulator sets (entries 4k, 4k + 1, 4k + 2, 4k + 3; the last count % 4 entries go to the
+// first), each holding a row of w (three values) in one register whose fourth lane is zero (256
+// bits for double, 128 for float), each product added by one fused multiply-add. Four sets
+// instead of the baseline's two: a fused multiply-add's latency is four of its issue slots, and
+// the solve took 5-10% less time (the curtain's 396 -> 365 us; a throwaway driver, quoted in the
+// notes of docs/performance.md).
 // - The forward substitution loads a row with one masked load. The back substitution reads rows
 //   it has just stored, and a load of a row stored as two narrower stores waits for the stores to
 //   reach the cache, so there a row is loaded as its first two values and its third: measured
@@ -212,8 +217,9 @@ struct Row3<double> {
   MASSSPRING_ROW3 V add_product(const double* l, V x, V acc) {  // acc + l x
     return _mm256_fmadd_pd(_mm256_broadcast_sd(l), x, acc);
   }
-  MASSSPRING_ROW3 V finish(V s, V t, double inv) {  // (s - t) inv
-    return _mm256_mul_pd(_mm256_sub_pd(s, t), _mm256_set1_pd(inv));
+  MASSSPRING_ROW3 V finish(V s, V t, V u, V v, double inv) {  // ((s - t) + (u - v)) inv
+    return _mm256_mul_pd(_mm256_add_pd(_mm256_sub_pd(s, t), _mm256_sub_pd(u, v)),
+                         _mm256_set1_pd(inv));
   }
 };
 
@@ -238,8 +244,8 @@ struct Row3<float> {
   MASSSPRING_ROW3 V add_product(const float* l, V x, V acc) {
     return _mm_fmadd_ps(_mm_broadcast_ss(l), x, acc);
   }
-  MASSSPRING_ROW3 V finish(V s, V t, float inv) {
-    return _mm_mul_ps(_mm_sub_ps(s, t), _mm_set1_ps(inv));
+  MASSSPRING_ROW3 V finish(V s, V t, V u, V v, float inv) {
+    return _mm_mul_ps(_mm_add_ps(_mm_sub_ps(s, t), _mm_sub_ps(u, v)), _mm_set1_ps(inv));
   }
 };
 #undef MASSSPRING_ROW3
@@ -254,13 +260,15 @@ MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& 
     const Index* idx = f.row_inner + f.row_outer[i];
     const Scalar* l = f.row_value + f.row_outer[i];
     Index count = f.row_outer[i + 1] - f.row_outer[i];
-    auto s = R::load(w + 3 * i), t = R::zero();
-    for (; count >= 2; count -= 2, idx += 2, l += 2) {
+    auto s = R::load(w + 3 * i), t = R::zero(), u = R::zero(), v = R::zero();
+    for (; count >= 4; count -= 4, idx += 4, l += 4) {
       s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
       t = R::add_product(l + 1, R::load_masked(w + 3 * idx[1]), t);
+      u = R::sub_product(l + 2, R::load_masked(w + 3 * idx[2]), u);
+      v = R::add_product(l + 3, R::load_masked(w + 3 * idx[3]), v);
     }
-    if (count == 1) s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
-    R::store(w + 3 * i, R::finish(s, t, f.inv_diag[i]));
+    for (; count > 0; --count, ++idx, ++l) s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
+    R::store(w + 3 * i, R::finish(s, t, u, v, f.inv_diag[i]));
   }
 }
 
@@ -274,13 +282,15 @@ MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>&
     Index count = f.outer[j + 1] - 1 - f.outer[j];
     const Index* idx = f.inner + f.outer[j + 1] - 1;  // the diagonal is at outer[j]
     const Scalar* l = f.value + f.outer[j + 1] - 1;
-    auto s = R::load(w + 3 * j), t = R::zero();
-    for (; count >= 2; count -= 2, idx -= 2, l -= 2) {
+    auto s = R::load(w + 3 * j), t = R::zero(), u = R::zero(), v = R::zero();
+    for (; count >= 4; count -= 4, idx -= 4, l -= 4) {
       s = R::sub_product(l, R::load(w + 3 * idx[0]), s);
       t = R::add_product(l - 1, R::load(w + 3 * idx[-1]), t);
+      u = R::sub_product(l - 2, R::load(w + 3 * idx[-2]), u);
+      v = R::add_product(l - 3, R::load(w + 3 * idx[-3]), v);
     }
-    if (count == 1) s = R::sub_product(l, R::load(w + 3 * idx[0]), s);
-    R::store(w + 3 * j, R::finish(s, t, f.inv_diag[j]));
+    for (; count > 0; --count, --idx, --l) s = R::sub_product(l, R::load(w + 3 * idx[0]), s);
+    R::store(w + 3 * j, R::finish(s, t, u, v, f.inv_diag[j]));
   }
 }
 #if defined(__GNUC__) && !defined(__clang__)
