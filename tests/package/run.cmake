@@ -32,9 +32,18 @@ foreach(file include/massspring/massspring.hpp include/massspring/io.hpp
   endif()
 endforeach()
 
-# 2. find_package from the prefix.
+# 2. find_package from the prefix (with the cholmod component where it was installed: the library's
+# configure found CHOLMOD).
+set(expect_cholmod OFF)
+if(EXISTS ${prefix}/share/cmake/massspring/massspringCholmodTargets.cmake)
+  set(expect_cholmod ON)
+  if(NOT EXISTS ${prefix}/share/cmake/massspring/FindCHOLMOD.cmake)
+    message(FATAL_ERROR "the install has massspring::cholmod but not FindCHOLMOD.cmake")
+  endif()
+endif()
+message(STATUS "massspring::cholmod installed: ${expect_cholmod}")
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package/find_package -B ${WORK_DIR}/find_package
-    ${common} -DCMAKE_PREFIX_PATH=${prefix})
+    ${common} -DCMAKE_PREFIX_PATH=${prefix} -DEXPECT_CHOLMOD=${expect_cholmod})
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/find_package)
 run(${WORK_DIR}/find_package/consumer ${WORK_DIR}/find_package)
 

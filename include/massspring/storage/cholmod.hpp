@@ -32,7 +32,7 @@ enum class CholmodOrdering {
   AMD,      ///< approximate minimum degree only
   METIS,    ///< METIS nested dissection only
   NESDIS,   ///< CHOLMOD's nested dissection (METIS plus constrained minimum degree)
-  Natural,  ///< no reordering
+  Natural,  ///< no reordering (not even a postorder of the elimination tree)
 };
 
 /// @brief Sparse Cholesky by CHOLMOD, solved by massspring's fused substitution (see the file).
@@ -45,7 +45,12 @@ class CholmodCholesky {
   /// @brief The ordering of the next compute() (default: CHOLMOD's own choice).
   CholmodOrdering ordering = CholmodOrdering::Default;
 
-  CholmodCholesky() { cholmod_start(&common_); }
+  /// @brief Starts CHOLMOD with its printing off: a failure is compute()'s return value, not a
+  /// line on stderr.
+  CholmodCholesky() {
+    cholmod_start(&common_);
+    common_.print = 0;
+  }
   ~CholmodCholesky() {
     free_factor();
     cholmod_finish(&common_);
@@ -159,6 +164,7 @@ class CholmodCholesky {
         break;
       case CholmodOrdering::Natural:
         set_method(CHOLMOD_NATURAL);
+        common_.postorder = 0;  // a postorder of the elimination tree would reorder the rows
         break;
     }
   }
