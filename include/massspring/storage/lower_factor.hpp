@@ -41,10 +41,9 @@ MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>&
 /// column from its last entry to its first, so that every array is read in one direction only and
 /// the hardware prefetcher follows it. Each sum is split over two sets of accumulators (four in the
 /// AVX2 rows), so that the additions do not form one chain of dependent latencies. On the 2.6 GHz
-/// EPYC of the project's
-/// measurements this halves the solve of a 256 x 256 cloth against a column-oriented (scatter)
-/// forward substitution and a back substitution reading each column upward (see
-/// docs/performance.md).
+/// EPYC of the project's measurements this halves the solve of a 256 x 256 cloth against a
+/// column-oriented (scatter) forward substitution and a back substitution reading each column
+/// upward (see docs/performance.md).
 ///
 /// forward_row() and backward_row() are the baseline (SSE2) rows. forward_rows(), backward_rows()
 /// and everything built on them take the AVX2 + FMA rows instead when `wide` is set: the same
@@ -177,8 +176,8 @@ struct LowerFactor {
 // first), each holding a row of w (three values) in one register whose fourth lane is zero (256
 // bits for double, 128 for float), each product added by one fused multiply-add. Four sets
 // instead of the baseline's two: a fused multiply-add's latency is four of its issue slots, and
-// the solve took 5-10% less time (the curtain's 396 -> 365 us; a throwaway driver, quoted in the
-// notes of docs/performance.md).
+// the solve took 1-8% less time (the curtain's 396 -> 365 us, 32^2 cloth's 25.9 -> 25.7 us; a
+// throwaway driver, quoted in the notes of docs/performance.md).
 // - The forward substitution loads a row with one masked load. The back substitution reads rows
 //   it has just stored, and a load of a row stored as two narrower stores waits for the stores to
 //   reach the cache, so there a row is loaded as its first two values and its third: measured
