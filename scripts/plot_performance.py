@@ -219,7 +219,9 @@ NOTES = """
   substitution (its nnz(L) counts the zeros its supernodes store), so it is not the default.
   COLAMD (meant for unsymmetric LU) fills 10x more; the natural order of a grid is a band.
   CHOLMOD stays opt-in: `include/massspring/storage/cholmod.hpp`
-  (`FastMassSpring<System, CholmodCholesky<double>>`), linked only by the project's benchmark.
+  (`FastMassSpring<System, CholmodCholesky<double>>`) through the CMake target
+  `massspring::cholmod`, defined (and installed as the package's component `cholmod`) where CMake
+  finds CHOLMOD.
 - **OpenMP, where it pays.** `FastMassSpringOptions::threads = 2` (needs `-fopenmp`; refused
   without it) runs the two substitutions on two threads: the rows are split along the factor's
   elimination tree into two unions of whole subtrees, which substitute independently, and a top
