@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
               system.num_points(), sag);
   if (!(sag > 0 && std::isfinite(sag))) return 1;
 #ifdef MASSSPRING_HAS_CHOLMOD
-  // The same 30 frames with CHOLMOD's factorisation: the same sag, to rounding.
+  // The same 30 frames with CHOLMOD's factorisation: the same sag, to rounding (measured 2.7e-15
+  // relative; the bound leaves about ten times that).
   System other = massspring::io::load_scene<System>(dir / "consumer-chain.json");
   massspring::FastMassSpring<System, massspring::CholmodCholesky<double>> cholmod;
   cholmod.options.gravity = {0, -9.8, 0};
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
     if (!cholmod.step(other).ok()) return 1;
   const double cholmod_sag = -other.positions().col(1).minCoeff();
   std::printf("with CHOLMOD: sag %.4f m\n", cholmod_sag);
-  if (!(std::abs(cholmod_sag - sag) <= 1e-9 * sag)) return 1;
+  if (!(std::abs(cholmod_sag - sag) <= 3e-14 * sag)) return 1;
 #endif
   return 0;
 }
