@@ -1131,8 +1131,9 @@ TEST_CASE("options.avx2 = false: the SSE2 substitution, within rounding of the d
   CHECK(narrow.factorization().avx2() == wide.factorization().avx2());
 }
 
-TEST_CASE("options.avx2: the AVX2 scatter pass gives the baseline pass's trajectory bit for bit") {
-  // Dense storage's solve has no AVX2 path, so avx2 on and off differ only in the spring pass,
+TEST_CASE("options.avx2: the AVX2 share pass gives the baseline pass's trajectory bit for bit") {
+  // Dense storage's solve has no AVX2 path, so avx2 on and off differ only in the spring pass
+  // (shares stored, then the right-hand side assembled from them, against the baseline's scatter),
   // which must do the same operations in the same order: identical positions. Cloths of several
   // sizes leave 0, 1, 2 and 3 springs after the last group of four; points put on top of each
   // other give zero-length springs; a tolerance makes every iteration evaluate the energy, Anderson
@@ -1174,6 +1175,65 @@ TEST_CASE("options.avx2: the AVX2 scatter pass gives the baseline pass's traject
   }
   std::sort(tails.begin(), tails.end());
   CHECK(std::unique(tails.begin(), tails.end()) - tails.begin() == 4);
+}
+
+namespace {
+// SparseCholesky without the solve that assembles the right-hand side itself: FastMassSpring
+// assembles it into w first and solves that (the path Dense storage takes).
+struct SolveOfAssembled : massspring::SparseCholesky<double> {
+  void solve_in_place(double* w) const { massspring::SparseCholesky<double>::solve_in_place(w); }
+};
+}  // namespace
+
+TEST_CASE("The right-hand side assembled inside the forward substitution: the same trajectory") {
+  // The AVX2 path (double) stores each spring's share and, with SparseCholesky, assembles each
+  // row of the right-hand side where the forward substitution reaches it; without that solve
+  // it assembles the whole right-hand side first. The same operations in the same order: the
+  // same positions, bit for bit, with either kind of pins, with acceleration, and with two
+  // points on top of each other (a zero-length spring). (On a CPU without AVX2 and FMA both take
+  // the baseline pass.)
+  using System = MassSpringSystem<double>;
+  for (const PinMode pins : {PinMode::Exact, PinMode::Penalty})
+    for (const auto acceleration :
+         {massspring::Acceleration::None, massspring::Acceleration::Chebyshev,
+          massspring::Acceleration::Anderson}) {
+      CAPTURE(int(pins));
+      CAPTURE(int(acceleration));
+      System a = small_cloth<System>(9, 7);
+      Points<double> x = a.positions();
+      x.row(10) = x.row(11);
+      a.set_positions(x);
+      System b = a;
+      FastMassSpring<System> inside;
+      FastMassSpring<System, SolveOfAssembled> before;
+      inside.options.pins = before.options.pins = pins;
+      inside.options.acceleration = before.options.acceleration = acceleration;
+      inside.options.gravity = before.options.gravity = {0, -9.8, 0};
+      inside.options.iterations = before.options.iterations = 12;
+      inside.options.tolerance = before.options.tolerance = 1e-10;
+      inside.precompute(a, 1.0 / 30);
+      before.precompute(b, 1.0 / 30);
+      for (int frame = 0; frame < 6; ++frame) {
+        const auto ra = inside.step(a), rb = before.step(b);
+        REQUIRE(ra.ok());
+        REQUIRE(rb.ok());
+        CHECK(ra.iterations == rb.iterations);
+        CHECK(ra.energy == rb.energy);
+      }
+      CHECK(a.positions() == b.positions());
+      CHECK(a.velocities() == b.velocities());
+      CHECK(a.positions() != x);
+      // Neither path allocates in a step.
+      std::size_t allocations = 0;
+      {
+        massspring::test::CountAllocations count;
+        inside.step(a);
+        before.step(b);
+        allocations = count.count();
+      }
+      CHECK(allocations == 0);
+      CHECK(a.positions() == b.positions());
+    }
 }
 
 TEST_CASE("options.threads: refused below 1, and on Dense storage above 1") {

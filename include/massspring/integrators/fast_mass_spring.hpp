@@ -21,6 +21,7 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/springs.hpp"
 #include "massspring/integrators/step_report.hpp"
+#include "massspring/storage/lower_factor.hpp"
 #include "massspring/storage/nested_dissection.hpp"
 #include "massspring/system/detail/avx2.hpp"
 #include "massspring/system/detail/validate.hpp"
@@ -198,12 +199,16 @@ struct FastMassSpringOptions {
 /// Inside a step the iterate lives in the factor's row order (the fill-reducing permutation), as a
 /// row-major #rows x 3 array, so that an iteration is one pass over the springs (sorted by row)
 /// scattering k_e d_e into the right-hand side, then one forward and one back substitution in
-/// place: no permutation, no copy of the iterate, no allocation.
+/// place: no permutation, no copy of the iterate, no allocation. On the AVX2 path (double) the
+/// pass stores each spring's k_e d_e in an array of its own instead, and the forward substitution
+/// assembles each row of the right-hand side from it as it reaches the row (see spring_pass()).
 ///
 /// @tparam System a MassSpringSystem<Scalar, Storage>
 /// @tparam Cholesky_ the factorisation of Q: by default the Storage's (SparseCholesky or
 /// DenseCholesky); any type with compute(Matrix), permutation(), solve_in_place(Scalar*),
-/// factor_nonzeros() works (e.g. CholmodCholesky from massspring/storage/cholmod.hpp).
+/// factor_nonzeros() works (e.g. CholmodCholesky from massspring/storage/cholmod.hpp); one that
+/// also has solve_in_place(Scalar*, const detail::RightHandSide<Scalar>&) gets the assembly of
+/// the right-hand side inside its forward substitution.
 template <class System, class Cholesky_ = typename System::Traits::Cholesky>
 class FastMassSpring {
  public:
@@ -393,11 +398,19 @@ class FastMassSpring {
   }
 
   template <class C, class = void>
+  struct has_assembled_solve : std::false_type {};
+  template <class C>
+  struct has_assembled_solve<
+      C, std::void_t<decltype(std::declval<const C&>().solve_in_place(
+             std::declval<Scalar*>(), std::declval<const detail::RightHandSide<Scalar>&>()))>>
+      : std::true_type {};
+
+  template <class C, class = void>
   struct has_avx2 : std::false_type {};
   template <class C>
   struct has_avx2<C, std::void_t<decltype(std::declval<C&>().set_avx2(true))>> : std::true_type {};
 
-  // The solver's threads and the AVX2 choice (substitutions, scatter pass) to the options'
+  // The solver's threads and the AVX2 choice (substitutions, share pass) to the options'
   // (SparseCholesky::set_threads checks for OpenMP).
   void apply_threads() {
     if constexpr (has_threads<Cholesky>::value) {
@@ -405,6 +418,7 @@ class FastMassSpring {
     }
     if constexpr (has_avx2<Cholesky>::value) llt_.set_avx2(options.avx2);
     wide_ = std::is_same_v<Scalar, double> && options.avx2 && detail::cpu_has_avx2_fma();
+    assembled_in_solve_ = wide_ && has_assembled_solve<Cholesky>::value;
   }
 
   // ---- precompute -------------------------------------------------------------------------------
@@ -526,14 +540,42 @@ class FastMassSpring {
     const Eigen::Index size = 3 * Eigen::Index(nx_), free_size = 3 * Eigen::Index(nr_);
     for (Buffer& b : buffers_) b.setZero(size);
     run_sum_.setZero(size);
-    // scatter_pass_avx2's buffers, only where it can run (options.avx2 may change later).
-    if (std::is_same_v<Scalar, double> && detail::cpu_has_avx2_fma()) {
-      run_sum4_.setZero(4 * Eigen::Index(nx_));
-      keep_.resize(m);
-      for (int s = 0; s < m; ++s)
-        keep_(s) = Scalar(s > 0 && ends_[std::size_t(s)].a == ends_[std::size_t(s - 1)].a);
-    }
     rhs0_.resize(free_size);
+    // share_pass_avx2's shares and the right-hand side assembled from them, only where it can run
+    // (options.avx2 may change later). Row a's run of springs is plus_begin_[a] ..
+    // plus_begin_[a + 1] - 1 (sorted by a); the springs whose b is row r are listed in
+    // minus_share_[minus_begin_[r] ..], ascending, as the baseline pass subtracts them.
+    shares_.resize(0);
+    plus_begin_.clear();
+    minus_begin_.clear();
+    minus_share_.clear();
+    assembled_ = {};
+    share_start_ = nullptr;
+    if (std::is_same_v<Scalar, double> && detail::cpu_has_avx2_fma()) {
+      shares_.setZero(4 * Eigen::Index(m) + 4);
+      const auto address = reinterpret_cast<std::uintptr_t>(shares_.data());
+      const std::size_t skip = (32 - address % 32) % 32 / sizeof(Scalar);  // to 32 bytes
+      plus_begin_.assign(std::size_t(nx_) + 1, 0);
+      minus_begin_.assign(std::size_t(nx_) + 1, 0);
+      for (const SpringEnds& s : ends_) {
+        ++plus_begin_[std::size_t(s.a) + 1];
+        ++minus_begin_[std::size_t(s.b) + 1];
+      }
+      for (std::size_t r = 0; r < std::size_t(nx_); ++r) {
+        plus_begin_[r + 1] += plus_begin_[r];
+        minus_begin_[r + 1] += minus_begin_[r];
+      }
+      minus_share_.resize(std::size_t(m));
+      std::vector<int> next(minus_begin_.begin(), minus_begin_.end() - 1);
+      for (int s = 0; s < m; ++s)
+        minus_share_[std::size_t(next[std::size_t(ends_[std::size_t(s)].b)]++)] = s;
+      assembled_.base = rhs0_.data();
+      share_start_ = shares_.data() + skip;
+      assembled_.shares = share_start_;
+      assembled_.plus_begin = plus_begin_.data();
+      assembled_.minus_begin = minus_begin_.data();
+      assembled_.minus_share = minus_share_.data();
+    }
     inertial_.resize(free_size);
     force_.resize(free_size);
     targets_.resize(3 * Eigen::Index(np));
@@ -640,10 +682,6 @@ class FastMassSpring {
   // of its run when the sum was added there. Rows that start no run keep run_sum_ at 0.
   template <bool Scatter, bool Energy>
   double spring_pass(const Scalar* x, Scalar* w) {
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-    if constexpr (Scatter && std::is_same_v<Scalar, double>)
-      if (wide_) return scatter_pass_avx2<Energy>(x, w);
-#endif
     const SpringEnds* sp = ends_.data();
     const Scalar* k = stiffness_.data();
     const Scalar* r = rest_.data();
@@ -710,39 +748,40 @@ class FastMassSpring {
   }
 
 #ifdef MASSSPRING_HAVE_AVX2_PATH
-  // The scatter pass (spring_pass<true, Energy>) compiled for AVX2, doubles only. A point's three
-  // coordinates are one 256-bit register (fourth lane 0); four springs share one vsqrtpd and one
-  // vdivpd; each spring's share k r d / |d| is one multiplication, added to row a's run sum by one
-  // fused multiply-add (acc * keep + s, keep_ = 1 inside a run, 0 where one starts: exact either
-  // way) and subtracted from row b by one subtraction. The same operations in the same order as
-  // the baseline pass, |d|^2 summed as (x^2 + y^2) + z^2: the same results, bit for bit (tested
-  // through Dense storage, whose solve has no AVX2 path). Run sums go to run_sum4_, four values
-  // per row, so that a whole register is stored. The curtain's step took 27.3 ms before and 26.0
-  // after (a throwaway driver, quoted in the notes of docs/performance.md); float stays on the
-  // baseline pass.
+  // The local step's pass over the springs compiled for AVX2, doubles only: each spring's share
+  // k r d / |d| is stored in shares (assembled_.shares, four values per spring, aligned), and
+  // the right-hand side is assembled from them where a row is needed (assembled_.row(), or
+  // inside the forward substitution: see detail::RightHandSide), in the order the baseline pass
+  // adds them: row b's subtractions in the order of the springs, then row a's run summed first to
+  // last and added. A point's three coordinates are one 256-bit register (fourth lane 0); four
+  // springs share one vsqrtpd and one vdivpd; |d|^2 is summed as (x^2 + y^2) + z^2 as in the
+  // baseline: the same results, bit for bit (tested through Dense storage, whose solve assembles
+  // the right-hand side before it). Storing the shares instead of scattering them into the
+  // right-hand side (the earlier AVX2 pass) removes every read-modify-write of a row from the
+  // pass, the run sums with their 0/1 restarts and the pass that added them, and the copy of
+  // rhs0. The earlier pass's time also depended on where its arrays lay in memory: 103 or 168 us
+  // on the curtain, 12 or 20 us on a 32 x 32 cloth, from run to run of one binary; the share pass
+  // does not vary. An iteration takes 5-12% less time (32^2 to 128^2 and the curtain; a throwaway
+  // driver, quoted in the notes of docs/performance.md). Float stays on the baseline pass.
   template <bool Energy>
-  MASSSPRING_TARGET_AVX2 double scatter_pass_avx2(const double* x, double* w) {
+  MASSSPRING_TARGET_AVX2 double share_pass_avx2(const double* x) {
     const int m = int(ends_.size());
     double energy = 0;
-    __m256d acc = _mm256_setzero_pd();
     int e = 0;
-    for (; e + 3 < m; e += 4) springs4_avx2<Energy, 4>(x, w, e, acc, energy);
+    for (; e + 3 < m; e += 4) springs4_avx2<Energy, 4>(x, e, energy);
     switch (m - e) {
       case 3:
-        springs4_avx2<Energy, 3>(x, w, e, acc, energy);
+        springs4_avx2<Energy, 3>(x, e, energy);
         break;
       case 2:
-        springs4_avx2<Energy, 2>(x, w, e, acc, energy);
+        springs4_avx2<Energy, 2>(x, e, energy);
         break;
       case 1:
-        springs4_avx2<Energy, 1>(x, w, e, acc, energy);
+        springs4_avx2<Energy, 1>(x, e, energy);
         break;
       default:
         break;
     }
-    const double* sums = run_sum4_.data();
-    for (int r = 0; r < nx_; ++r)
-      for (int c = 0; c < 3; ++c) w[3 * r + c] += sums[4 * r + c];
     return energy / 2;
   }
 
@@ -756,10 +795,9 @@ class FastMassSpring {
                            p[0]);
   }
 
-  // Springs e .. e + N - 1 (N <= 4) of scatter_pass_avx2; lanes N .. 3 repeat spring e, unused.
+  // Springs e .. e + N - 1 (N <= 4) of share_pass_avx2; lanes N .. 3 repeat spring e, unused.
   template <bool Energy, int N>
-  MASSSPRING_TARGET_AVX2 MASSSPRING_ALWAYS_INLINE void springs4_avx2(const double* x, double* w,
-                                                                     int e, __m256d& acc,
+  MASSSPRING_TARGET_AVX2 MASSSPRING_ALWAYS_INLINE void springs4_avx2(const double* x, int e,
                                                                      double& energy) {
     const SpringEnds* sp = ends_.data() + e;
     const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
@@ -789,11 +827,10 @@ class FastMassSpring {
       for (int i = 0; i < N; ++i) energy += lane[i];
     }
     const int positive = _mm256_movemask_pd(_mm256_cmp_pd(sq, _mm256_setzero_pd(), _CMP_GT_OQ));
-    const double* keep = keep_.data() + e;
-    double* sums = run_sum4_.data();
+    double* shares = share_start_ + 4 * std::ptrdiff_t(e);
     MASSSPRING_UNROLL
     for (int i = 0; i < N; ++i) {
-      __m256d s;  // k r / |d| times d (the lane broadcast needs an immediate)
+      __m256d s;  // k r / |d| times d (the lane broadcast needs an immediate); fourth lane 0
       switch (i) {
         case 0:
           s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0x00), d[0]);
@@ -811,15 +848,7 @@ class FastMassSpring {
       if (!(positive >> i & 1))  // zero length (or NaN): k r along the direction kept
         s = _mm256_mul_pd(_mm256_set1_pd(kr_[e + i]),
                           _mm256_maskload_pd(direction_.data() + 3 * (e + i), three));
-      acc = _mm256_fmadd_pd(acc, _mm256_broadcast_sd(keep + i), s);
-      _mm256_storeu_pd(sums + 4 * sp[i].a, acc);
-      // Row b as its first two values and its third (it may have just been stored that way).
-      double* wb = w + 3 * sp[i].b;
-      const __m256d b =
-          _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(wb)), _mm_load_sd(wb + 2), 1);
-      const __m256d v = _mm256_sub_pd(b, s);
-      _mm_storeu_pd(wb, _mm256_castpd256_pd128(v));
-      _mm_store_sd(wb + 2, _mm256_extractf128_pd(v, 1));
+      _mm256_store_pd(shares + 4 * i, s);
     }
   }
 #endif
@@ -859,15 +888,37 @@ class FastMassSpring {
     }
   }
 
-  // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy.
+  // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy. On the AVX2 path
+  // with a factorisation that assembles the right-hand side itself, only the springs' shares are
+  // computed and w is left as it is: global_step() must follow before w is read.
   template <bool Energy>
   double local_step(const Scalar* x, Scalar* w) {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    if constexpr (std::is_same_v<Scalar, double>) {
+      if (wide_) {
+        double energy = 0;
+        if constexpr (Energy) energy = start_rhs<true, false>(x, nullptr);
+        energy += share_pass_avx2<Energy>(x);
+        if (!assembled_in_solve_)
+          for (int r = 0; r < nr_; ++r) assembled_.row(r, w + 3 * r);
+        return energy;
+      }
+    }
+#endif
     const double quadratic = start_rhs<Energy>(x, w);
     return quadratic + spring_pass<true, Energy>(x, w);
   }
 
-  // The global step in place: w = Q^-1 w on the free rows; pinned rows restored.
+  // The global step in place: w = Q^-1 w on the free rows (w = Q^-1 (rhs0 + A^T K D) assembled
+  // from the shares, see local_step()); pinned rows restored.
   void global_step(Scalar* w) {
+    if constexpr (has_assembled_solve<Cholesky>::value) {
+      if (assembled_in_solve_) {
+        llt_.solve_in_place(w, assembled_);
+        restore_pins(w);
+        return;
+      }
+    }
     llt_.solve_in_place(w);
     restore_pins(w);
   }
@@ -1204,11 +1255,14 @@ class FastMassSpring {
   std::array<Buffer, 5> buffers_;
   Buffer rhs0_, inertial_, force_, mass_h2_, targets_, penalty_targets_, direction_;
   Buffer stiffness_, rest_, kr_;
-  bool wide_ = false;  // scatter_pass_avx2 (double, options.avx2, a CPU with AVX2 and FMA)
-  Buffer keep_;        // per sorted spring: 1 when it continues the previous one's run, else 0
-  Buffer run_sum4_;    // run_sum_ for scatter_pass_avx2: four values per row
-  Buffer run_sum_;     // per row: the sum of its run of springs (spring_pass), 0 for rows with none
-  Scalar drag_ = 0;    // sum of the system's LinearDrag coefficients [N s/m]
+  bool wide_ = false;  // share_pass_avx2 (double, options.avx2, a CPU with AVX2 and FMA)
+  bool assembled_in_solve_ = false;  // wide_, and llt_ assembles the right-hand side
+  Buffer shares_;  // share_pass_avx2: k r d / |d| per sorted spring, four values (from 32 bytes)
+  std::vector<int> plus_begin_, minus_begin_, minus_share_;  // see build()
+  Scalar* share_start_ = nullptr;            // shares_'s first 32-byte aligned value
+  detail::RightHandSide<Scalar> assembled_;  // rhs0_ + the shares, for the forward substitution
+  Buffer run_sum_;   // per row: the sum of its run of springs (spring_pass), 0 for rows with none
+  Scalar drag_ = 0;  // sum of the system's LinearDrag coefficients [N s/m]
   bool other_terms_ = false;   // the system has force terms other than drag
   Points<Scalar> term_force_;  // their force at the step's start
   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> df_, dg_;

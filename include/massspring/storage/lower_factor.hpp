@@ -2,7 +2,8 @@
 /// @file
 /// @brief detail::LowerFactor and detail::LowerFactorRows: forward and back substitution with a
 /// sparse Cholesky factor L for three right-hand sides at once, in place, allocation-free, with
-/// an AVX2 + FMA version chosen at run time (system/detail/avx2.hpp).
+/// an AVX2 + FMA version chosen at run time (system/detail/avx2.hpp), and detail::RightHandSide,
+/// a right-hand side the forward substitution assembles row by row as it goes.
 
 #include <algorithm>
 #include <cmath>
@@ -20,11 +21,48 @@ namespace detail {
 template <class Scalar, class Index>
 struct LowerFactor;
 
+/// @brief A right-hand side assembled row by row as the forward substitution reaches it, instead
+/// of in a pass of its own: row i is base_i, minus the shares minus_share[minus_begin[i] ..
+/// minus_begin[i + 1]) in that order, plus the sum of the consecutive shares plus_begin[i] ..
+/// plus_begin[i + 1] - 1 (summed first to last, then added). A share is four Scalars (the fourth
+/// never reaches w), the array aligned to four Scalars (16 bytes for float, 32 for double) for
+/// the AVX2 rows. FastMassSpring's springs: each spring's k r d / |d| is one share, added to its
+/// lower row and subtracted from its higher one (the order of its baseline spring pass: the same
+/// result bit for bit).
+template <class Scalar>
+struct RightHandSide {
+  const Scalar* base = nullptr;  // rows * 3, row-major (w[3 r + c])
+  const Scalar* shares = nullptr;
+  const int* plus_begin = nullptr;   // rows + 1
+  const int* minus_begin = nullptr;  // rows + 1
+  const int* minus_share = nullptr;
+
+  /// @brief Row i into out[0 .. 2], in the order documented above (the baseline rows' version).
+  void row(int i, Scalar* out) const {
+    Scalar r0 = base[3 * i], r1 = base[3 * i + 1], r2 = base[3 * i + 2];
+    for (int q = minus_begin[i]; q < minus_begin[i + 1]; ++q) {
+      const Scalar* s = shares + 4 * std::ptrdiff_t(minus_share[q]);
+      r0 -= s[0], r1 -= s[1], r2 -= s[2];
+    }
+    const int first = plus_begin[i], last = plus_begin[i + 1];
+    if (first < last) {
+      const Scalar* s = shares + 4 * std::ptrdiff_t(first);
+      Scalar a0 = s[0], a1 = s[1], a2 = s[2];
+      for (int e = first + 1; e < last; ++e) {
+        s += 4;
+        a0 += s[0], a1 += s[1], a2 += s[2];
+      }
+      r0 += a0, r1 += a1, r2 += a2;
+    }
+    out[0] = r0, out[1] = r1, out[2] = r2;
+  }
+};
+
 #ifdef MASSSPRING_HAVE_AVX2_PATH
 template <class Scalar, class Index>
 MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
-                                              const Index* order, Index begin, Index end,
-                                              Scalar* w);
+                                              const Index* order, Index begin, Index end, Scalar* w,
+                                              const RightHandSide<Scalar>* rhs);
 template <class Scalar, class Index>
 MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>& f,
                                                const Index* order, Index begin, Index end,
@@ -70,12 +108,18 @@ struct LowerFactor {
   /// with one rounding (a fused multiply-add) instead of two.
   bool wide = false;
 
-  /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself).
-  void forward_rows(const Index* order, Index begin, Index end, Scalar* w) const {
+  /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself); with `rhs`,
+  /// row i of the right-hand side is rhs->row(i) instead of w's row i, which is not read.
+  void forward_rows(const Index* order, Index begin, Index end, Scalar* w,
+                    const RightHandSide<Scalar>* rhs = nullptr) const {
 #ifdef MASSSPRING_HAVE_AVX2_PATH
-    if (wide) return forward_rows_avx2(*this, order, begin, end, w);
+    if (wide) return forward_rows_avx2(*this, order, begin, end, w, rhs);
 #endif
-    for (Index q = begin; q < end; ++q) forward_row(order ? order[q] : q, w);
+    for (Index q = begin; q < end; ++q) {
+      const Index i = order ? order[q] : q;
+      if (rhs) rhs->row(int(i), w + 3 * i);
+      forward_row(i, w);
+    }
   }
 
   /// @brief backward_row(order[q]) for q = end - 1 down to begin (order null: q itself).
@@ -94,8 +138,10 @@ struct LowerFactor {
     solve_row<1>(i, row_inner + first, row_value + first, row_outer[i + 1] - first, w);
   }
 
-  /// @brief The forward substitution L z = w in place.
-  void forward(Scalar* w) const { forward_rows(nullptr, 0, n, w); }
+  /// @brief The forward substitution L z = w in place (with `rhs`: L z = rhs, into w).
+  void forward(Scalar* w, const RightHandSide<Scalar>* rhs = nullptr) const {
+    forward_rows(nullptr, 0, n, w, rhs);
+  }
 
   /// @brief Row j of the back substitution L^T u = z: u_j = (z_j - sum_{i>j} L(i, j) u_i) /
   /// L(j, j), a gather from the rows below, column j of L read from its last entry up. Rows must
@@ -109,9 +155,10 @@ struct LowerFactor {
   /// @brief The back substitution L^T u = z in place.
   void backward(Scalar* w) const { backward_rows(nullptr, 0, n, w); }
 
-  /// @brief w = (L L^T)^-1 w.
-  void solve(Scalar* w) const {
-    forward(w);
+  /// @brief w = (L L^T)^-1 w; with `rhs`, w = (L L^T)^-1 rhs (w's rows 0 .. n - 1 written, not
+  /// read: the right-hand side is assembled as the forward substitution reaches each row).
+  void solve(Scalar* w, const RightHandSide<Scalar>* rhs = nullptr) const {
+    forward(w, rhs);
     backward(w);
   }
 
@@ -119,27 +166,27 @@ struct LowerFactor {
   /// substitutes forward its part (a union of subtrees, which needs no other rows), one thread the
   /// top after a barrier, forward then back, and after a second barrier each thread its part
   /// back. The same operations as solve() in the same order within each row: the same result, bit
-  /// for bit. Without OpenMP (or without a schedule) it is solve().
-  void solve_parallel(Scalar* w) const {
+  /// for bit. Without OpenMP (or without a schedule) it is solve(). `rhs` as in solve().
+  void solve_parallel(Scalar* w, const RightHandSide<Scalar>* rhs = nullptr) const {
 #ifdef _OPENMP
-    if (parts < 2) return solve(w);
+    if (parts < 2) return solve(w, rhs);
 #pragma omp parallel num_threads(parts)
     {
       const int t = omp_get_thread_num();
       const int threads = omp_get_num_threads();  // fewer than asked: the parts are shared out
       for (int part = t; part < parts; part += threads)
-        forward_rows(schedule, part_start[part], part_start[part + 1], w);
+        forward_rows(schedule, part_start[part], part_start[part + 1], w, rhs);
 #pragma omp barrier
 #pragma omp single
       {
-        forward_rows(schedule, part_start[parts], n, w);
+        forward_rows(schedule, part_start[parts], n, w, rhs);
         backward_rows(schedule, part_start[parts], n, w);
       }  // (an implied barrier)
       for (int part = t; part < parts; part += threads)
         backward_rows(schedule, part_start[part], part_start[part + 1], w);
     }
 #else
-    solve(w);
+    solve(w, rhs);
 #endif
   }
 
@@ -205,6 +252,9 @@ struct Row3<double> {
   MASSSPRING_ROW3 V load_masked(const double* p) {
     return _mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0));
   }
+  MASSSPRING_ROW3 V load_share(const double* p) { return _mm256_load_pd(p); }  // 32-byte aligned
+  MASSSPRING_ROW3 V add(V a, V b) { return _mm256_add_pd(a, b); }
+  MASSSPRING_ROW3 V sub(V a, V b) { return _mm256_sub_pd(a, b); }
   MASSSPRING_ROW3 void store(double* p, V v) {
     _mm_storeu_pd(p, _mm256_castpd256_pd128(v));
     _mm_store_sd(p + 2, _mm256_extractf128_pd(v, 1));
@@ -232,6 +282,9 @@ struct Row3<float> {
   MASSSPRING_ROW3 V load_masked(const float* p) {
     return _mm_maskload_ps(p, _mm_setr_epi32(-1, -1, -1, 0));
   }
+  MASSSPRING_ROW3 V load_share(const float* p) { return _mm_load_ps(p); }  // 16-byte aligned
+  MASSSPRING_ROW3 V add(V a, V b) { return _mm_add_ps(a, b); }
+  MASSSPRING_ROW3 V sub(V a, V b) { return _mm_sub_ps(a, b); }
   MASSSPRING_ROW3 void store(float* p, V v) {
     _mm_storel_pi(reinterpret_cast<__m64*>(p), v);
     _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
@@ -248,17 +301,36 @@ struct Row3<float> {
 };
 #undef MASSSPRING_ROW3
 
+// RightHandSide::row(i) in a register: the same operations in the same order.
+template <class Scalar>
+MASSSPRING_TARGET_AVX2 __attribute__((always_inline)) inline typename Row3<Scalar>::V
+assemble_row_avx2(const RightHandSide<Scalar>& rhs, int i) {
+  using R = Row3<Scalar>;
+  auto r = R::load_masked(rhs.base + 3 * i);
+  for (int q = rhs.minus_begin[i]; q < rhs.minus_begin[i + 1]; ++q)
+    r = R::sub(r, R::load_share(rhs.shares + 4 * std::ptrdiff_t(rhs.minus_share[q])));
+  const int first = rhs.plus_begin[i], last = rhs.plus_begin[i + 1];
+  if (first < last) {
+    const Scalar* s = rhs.shares + 4 * std::ptrdiff_t(first);
+    auto a = R::load_share(s);
+    for (int e = first + 1; e < last; ++e) a = R::add(a, R::load_share(s += 4));
+    r = R::add(r, a);
+  }
+  return r;
+}
+
 template <class Scalar, class Index>
 MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
-                                              const Index* order, Index begin, Index end,
-                                              Scalar* w) {
+                                              const Index* order, Index begin, Index end, Scalar* w,
+                                              const RightHandSide<Scalar>* rhs) {
   using R = Row3<Scalar>;
   for (Index q = begin; q < end; ++q) {
     const Index i = order ? order[q] : q;
     const Index* idx = f.row_inner + f.row_outer[i];
     const Scalar* l = f.row_value + f.row_outer[i];
     Index count = f.row_outer[i + 1] - f.row_outer[i];
-    auto s = R::load(w + 3 * i), t = R::zero(), u = R::zero(), v = R::zero();
+    auto s = rhs ? assemble_row_avx2(*rhs, int(i)) : R::load(w + 3 * i);
+    auto t = R::zero(), u = R::zero(), v = R::zero();
     for (; count >= 4; count -= 4, idx += 4, l += 4) {
       s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
       t = R::add_product(l + 1, R::load_masked(w + 3 * idx[1]), t);

@@ -119,6 +119,14 @@ class SparseCholesky {
     else
       lower().solve(w);
   }
+  /// @brief w = (P Q P^T)^-1 rhs, the right-hand side assembled row by row inside the forward
+  /// substitution (detail::RightHandSide, in the factor's order); w's rows are written, not read.
+  void solve_in_place(Scalar* w, const detail::RightHandSide<Scalar>& rhs) const {
+    if (threads_ > 1)
+      lower().solve_parallel(w, &rhs);
+    else
+      lower().solve(w, &rhs);
+  }
 
   /// @brief Threads the substitutions use (default 1). With t > 1 the rows are split along the
   /// elimination tree into t parts and a top (LowerFactorRows::plan_threads) and solve() runs on

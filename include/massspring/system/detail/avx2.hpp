@@ -18,7 +18,7 @@
 
 /// Fully unrolls the loop that follows (a fixed count over the lanes of a few springs), so that
 /// its arrays of registers stay in registers at -O2 too, where GCC 12 would keep the loop and put
-/// the arrays on the stack (the AVX2 scatter pass took 1.7x its -O3 time that way).
+/// the arrays on the stack (the AVX2 spring pass took 1.7x its -O3 time that way).
 #if defined(__clang__)
 #define MASSSPRING_UNROLL _Pragma("unroll")
 #elif defined(__GNUC__)
