@@ -9,7 +9,9 @@
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/scene/cloth.hpp>
 #include <massspring/scene/make_system.hpp>
+#include <memory>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include "support/alloc_counter.hpp"
@@ -1234,6 +1236,40 @@ TEST_CASE("The right-hand side assembled inside the forward substitution: the sa
       CHECK(allocations == 0);
       CHECK(a.positions() == b.positions());
     }
+}
+
+TEST_CASE("A copy of a precomputed solver steps on buffers of its own") {
+  // The solver keeps no pointer into its own buffers between calls (the AVX2 pass's aligned
+  // shares and the right-hand side assembled from them are looked up at each use): a copy, made
+  // after precompute() and then outliving the original, follows the original's trajectory.
+  // (Dense storage: Eigen's sparse factorisations cannot be copied, so neither can a Sparse
+  // solver.)
+  using System = MassSpringSystem<double, Dense>;
+  static_assert(std::is_copy_constructible_v<FastMassSpring<System>>);
+  System a = small_cloth<System>(6, 5), b = a;
+  FastMassSpring<System> reference;
+  auto original = std::make_unique<FastMassSpring<System>>();
+  for (auto* solver : {&reference, original.get()}) {
+    solver->options.gravity = {0, -9.8, 0};
+    solver->options.iterations = 10;
+  }
+  reference.precompute(a, 1.0 / 30);
+  original->precompute(b, 1.0 / 30);
+  for (int frame = 0; frame < 2; ++frame) {
+    REQUIRE(reference.step(a).ok());
+    REQUIRE(original->step(b).ok());
+  }
+  FastMassSpring<System> copy(*original);
+  original.reset();
+  FastMassSpring<System> moved(std::move(copy));
+  for (int frame = 0; frame < 3; ++frame) {
+    REQUIRE(reference.step(a).ok());
+    const auto report = moved.step(b);
+    REQUIRE(report.ok());
+    CHECK_FALSE(report.refactorized);
+  }
+  CHECK(a.positions() == b.positions());
+  CHECK(a.velocities() == b.velocities());
 }
 
 TEST_CASE("options.threads: refused below 1, and on Dense storage above 1") {

@@ -549,12 +549,8 @@ class FastMassSpring {
     plus_begin_.clear();
     minus_begin_.clear();
     minus_share_.clear();
-    assembled_ = {};
-    share_start_ = nullptr;
     if (std::is_same_v<Scalar, double> && detail::cpu_has_avx2_fma()) {
-      shares_.setZero(4 * Eigen::Index(m) + 4);
-      const auto address = reinterpret_cast<std::uintptr_t>(shares_.data());
-      const std::size_t skip = (32 - address % 32) % 32 / sizeof(Scalar);  // to 32 bytes
+      shares_.setZero(4 * Eigen::Index(m) + 4);  // room to start at a 32-byte boundary
       plus_begin_.assign(std::size_t(nx_) + 1, 0);
       minus_begin_.assign(std::size_t(nx_) + 1, 0);
       for (const SpringEnds& s : ends_) {
@@ -569,12 +565,6 @@ class FastMassSpring {
       std::vector<int> next(minus_begin_.begin(), minus_begin_.end() - 1);
       for (int s = 0; s < m; ++s)
         minus_share_[std::size_t(next[std::size_t(ends_[std::size_t(s)].b)]++)] = s;
-      assembled_.base = rhs0_.data();
-      share_start_ = shares_.data() + skip;
-      assembled_.shares = share_start_;
-      assembled_.plus_begin = plus_begin_.data();
-      assembled_.minus_begin = minus_begin_.data();
-      assembled_.minus_share = minus_share_.data();
     }
     inertial_.resize(free_size);
     force_.resize(free_size);
@@ -749,8 +739,8 @@ class FastMassSpring {
 
 #ifdef MASSSPRING_HAVE_AVX2_PATH
   // The local step's pass over the springs compiled for AVX2, doubles only: each spring's share
-  // k r d / |d| is stored in shares (assembled_.shares, four values per spring, aligned), and
-  // the right-hand side is assembled from them where a row is needed (assembled_.row(), or
+  // k r d / |d| is stored in shares (shares_ from share_start(), four values per spring), and
+  // the right-hand side is assembled from them where a row is needed (assembled().row(), or
   // inside the forward substitution: see detail::RightHandSide), in the order the baseline pass
   // adds them: row b's subtractions in the order of the springs, then row a's run summed first to
   // last and added. A point's three coordinates are one 256-bit register (fourth lane 0); four
@@ -827,7 +817,7 @@ class FastMassSpring {
       for (int i = 0; i < N; ++i) energy += lane[i];
     }
     const int positive = _mm256_movemask_pd(_mm256_cmp_pd(sq, _mm256_setzero_pd(), _CMP_GT_OQ));
-    double* shares = share_start_ + 4 * std::ptrdiff_t(e);
+    double* shares = share_start() + 4 * std::ptrdiff_t(e);
     MASSSPRING_UNROLL
     for (int i = 0; i < N; ++i) {
       __m256d s;  // k r / |d| times d (the lane broadcast needs an immediate); fourth lane 0
@@ -888,6 +878,24 @@ class FastMassSpring {
     }
   }
 
+  // shares_'s first value on a 32-byte boundary (computed at each use: a copy of the solver has
+  // buffers of its own, aligned differently).
+  Scalar* share_start() {
+    const auto address = reinterpret_cast<std::uintptr_t>(shares_.data());
+    return shares_.data() + (32 - address % 32) % 32 / sizeof(Scalar);
+  }
+
+  // rhs0 plus the shares, as the forward substitution assembles it (see detail::RightHandSide).
+  detail::RightHandSide<Scalar> assembled() {
+    detail::RightHandSide<Scalar> rhs;
+    rhs.base = rhs0_.data();
+    rhs.shares = share_start();
+    rhs.plus_begin = plus_begin_.data();
+    rhs.minus_begin = minus_begin_.data();
+    rhs.minus_share = minus_share_.data();
+    return rhs;
+  }
+
   // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy. On the AVX2 path
   // with a factorisation that assembles the right-hand side itself, only the springs' shares are
   // computed and w is left as it is: global_step() must follow before w is read.
@@ -899,8 +907,10 @@ class FastMassSpring {
         double energy = 0;
         if constexpr (Energy) energy = start_rhs<true, false>(x, nullptr);
         energy += share_pass_avx2<Energy>(x);
-        if (!assembled_in_solve_)
-          for (int r = 0; r < nr_; ++r) assembled_.row(r, w + 3 * r);
+        if (!assembled_in_solve_) {
+          const detail::RightHandSide<Scalar> rhs = assembled();
+          for (int r = 0; r < nr_; ++r) rhs.row(r, w + 3 * r);
+        }
         return energy;
       }
     }
@@ -914,7 +924,7 @@ class FastMassSpring {
   void global_step(Scalar* w) {
     if constexpr (has_assembled_solve<Cholesky>::value) {
       if (assembled_in_solve_) {
-        llt_.solve_in_place(w, assembled_);
+        llt_.solve_in_place(w, assembled());
         restore_pins(w);
         return;
       }
@@ -1259,8 +1269,6 @@ class FastMassSpring {
   bool assembled_in_solve_ = false;  // wide_, and llt_ assembles the right-hand side
   Buffer shares_;  // share_pass_avx2: k r d / |d| per sorted spring, four values (from 32 bytes)
   std::vector<int> plus_begin_, minus_begin_, minus_share_;  // see build()
-  Scalar* share_start_ = nullptr;            // shares_'s first 32-byte aligned value
-  detail::RightHandSide<Scalar> assembled_;  // rhs0_ + the shares, for the forward substitution
   Buffer run_sum_;   // per row: the sum of its run of springs (spring_pass), 0 for rows with none
   Scalar drag_ = 0;  // sum of the system's LinearDrag coefficients [N s/m]
   bool other_terms_ = false;   // the system has force terms other than drag
