@@ -59,7 +59,7 @@ struct RightHandSide {
 };
 
 #ifdef MASSSPRING_HAVE_AVX2_PATH
-template <class Scalar, class Index>
+template <bool Assemble, class Scalar, class Index>
 MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
                                               const Index* order, Index begin, Index end, Scalar* w,
                                               const RightHandSide<Scalar>* rhs);
@@ -113,7 +113,10 @@ struct LowerFactor {
   void forward_rows(const Index* order, Index begin, Index end, Scalar* w,
                     const RightHandSide<Scalar>* rhs = nullptr) const {
 #ifdef MASSSPRING_HAVE_AVX2_PATH
-    if (wide) return forward_rows_avx2(*this, order, begin, end, w, rhs);
+    if (wide) {
+      if (rhs) return forward_rows_avx2<true>(*this, order, begin, end, w, rhs);
+      return forward_rows_avx2<false>(*this, order, begin, end, w, rhs);
+    }
 #endif
     for (Index q = begin; q < end; ++q) {
       const Index i = order ? order[q] : q;
@@ -319,7 +322,9 @@ assemble_row_avx2(const RightHandSide<Scalar>& rhs, int i) {
   return r;
 }
 
-template <class Scalar, class Index>
+// Assemble: row i of the right-hand side from *rhs (not null) instead of w; an instantiation of
+// its own, so that the plain solve has no test per row.
+template <bool Assemble, class Scalar, class Index>
 MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
                                               const Index* order, Index begin, Index end, Scalar* w,
                                               const RightHandSide<Scalar>* rhs) {
@@ -329,7 +334,11 @@ MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& 
     const Index* idx = f.row_inner + f.row_outer[i];
     const Scalar* l = f.row_value + f.row_outer[i];
     Index count = f.row_outer[i + 1] - f.row_outer[i];
-    auto s = rhs ? assemble_row_avx2(*rhs, int(i)) : R::load(w + 3 * i);
+    typename R::V s;
+    if constexpr (Assemble)
+      s = assemble_row_avx2(*rhs, int(i));
+    else
+      s = R::load(w + 3 * i);
     auto t = R::zero(), u = R::zero(), v = R::zero();
     for (; count >= 4; count -= 4, idx += 4, l += 4) {
       s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
