@@ -74,7 +74,9 @@ NOTES = """
   their lower row, whose share is summed in registers), the energy evaluation in every iteration
   (only where the report or the tolerance needs it), and the copy of the solution. What is left
   above the floor is the spring pass itself: about 4 ns per spring on this machine (4.5 before
-  the pairs described below, about 3 with the AVX2 scatter pass further down). Tried and dropped
+  the pairs described below, about 3 with the AVX2 scatter pass further down, 2.1-2.6 with the
+  AVX2 share pass and the right-hand side assembled inside the forward substitution, near the
+  end of these notes). Tried and dropped
   because they measured slower: fusing the spring pass into the forward substitution (column
   form: flag 1.63 against 1.40 floors; row form: curtain 1.47 against 1.33), batching square roots
   and divisions through Eigen packets (chunks of 256 springs: 15-25% slower with SSE2, 5-10%
@@ -195,6 +197,55 @@ NOTES = """
     on the curtain): the pass is not bound by cache misses there. On the 512^2 cloth, whose
     arrays do not fit in the caches, the work outside the solve costs 6.7-7.0 ns per spring
     against 3.3 at 32^2.
+- **The AVX2 spring pass stores its shares; the forward substitution assembles the right-hand
+  side** (`share_pass_avx2`, `detail::RightHandSide`, double). The pass no longer scatters: each
+  spring's k r d / |d| goes to an array of its own (32 bytes per spring, written in order), and
+  each row of the right-hand side is assembled when the forward substitution reaches it: rhs0,
+  minus the shares of the springs whose higher row it is (a list per row), plus the sum of the
+  row's own run of springs. These are the baseline pass's additions in its order, so the results
+  are the same bit for bit (tested). Gone from every iteration: the read-modify-write of row b
+  per spring, the run-sum stores with their 0/1 restarts, the pass adding the run sums and the
+  copy of rhs0. The scatter pass's time also depended on where its arrays happened to lie: one
+  binary, run to run, took 103 or 168 us for the curtain's pass and 12 or 20 us for 32^2's, and
+  moving w against x by multiples of 256 bytes moved 32^2 between the two (a conflict between
+  the arrays in the L1 cache is the likely cause: an inference, there are no counters here). The
+  share pass did not vary. A throwaway driver timing one iteration (best of 21, the old and new
+  headers alternated twice, GCC 12 -O3, quiet machine): 32^2 38.8-39.5 -> 34.5-34.8 us, 64^2
+  181.8-182.0 -> 167.8-167.9, curtain 480.5-484.9 -> 450.6-454.7, 128^2 885.6-911.1 ->
+  851.8-874.2; iteration / solve 1.48-1.50 -> 1.32, 1.41 -> 1.30, 1.31 -> 1.23, 1.36-1.40 ->
+  1.31-1.35. Parts, on the curtain: the share pass 58 us (43 without its square roots and
+  divisions, so the divider is a quarter of it), the assembly inside the forward substitution
+  about 20 us; 32^2: 6.6 and 1.6 us. The project's `bench_fast_mass_spring`, the binaries before
+  and after alternated twice (`Step/Sparse` medians): curtain 24.3 and 24.5 -> 24.0 and 23.3 ms,
+  flag 7.10 and 7.09 -> 6.58 and 6.60 ms, skirt 26.5 and 25.6 -> 23.9 and 24.2 ms. At 128^2 and
+  256^2 `bench_scale` (exact pins) showed no difference through this machine's noise (three
+  alternations: 0.99-1.10 against 0.97-1.18 ms per iteration at 128^2, 5.76-6.38 against
+  5.78-6.19 at 256^2), nor at 512^2 (28.4 and 29.9 against 28.8 and 29.2 ms); the shares are 32
+  bytes per spring written and read once per iteration, which the larger grids pay from the
+  L3 cache or memory. Memory: 32 bytes per spring for the shares and 4 per spring and 8 per row
+  for their lists, against 8 per spring and 32 per row before (the million-point cloth's peak
+  RSS, below, rose by about 85 MiB). **Not settled:** the million-point cloth. `bench_scale
+  --grid 1000 --frames 3`, the binaries before and after, one thread: before 127.8 and 127.8 ms
+  per iteration; after 193.2, 172.0 and 127.6 ms (and 130.5 in the run on this page, against
+  123.0 at the last one). Either the shares' 128 MB round trip per iteration or this machine's
+  noise; not yet told apart. The two-thread figures showed no such gap (88.6 and 101.7 after,
+  96.9 before).
+- **Slow solver instances.** Creating the same curtain's solver over and over in one process
+  (a throwaway driver, 30 instances), about one in ten substituted 1.35-1.45x slower (forward or
+  back) than the rest, although every array sat at the same address modulo 4096 as in a fast
+  instance. So it is not the 4 KiB aliasing the scatter pass suffered from; where the pages land
+  is the likely cause, which a program cannot choose. A benchmark's three repetitions each build
+  their own solver, so one slow instance moves a mean, rarely a median.
+- **Tried with the share pass and dropped** (throwaway drivers, not kept):
+  - *The share pass inside the back substitution* (springs computed as soon as the rows above
+    their lower row are final, so that the back substitution's latency-bound sums could overlap
+    them): curtain 468-479 against 443 us, whatever the lag (0 to 64 rows).
+  - *A float reciprocal square root and Newton steps* (`vrsqrtps`, two or three steps in double)
+    instead of `vsqrtpd` and `vdivpd`: the pass took 66 and 75 against 58 us.
+  - *Indices stored times three and one test for zero lengths per four springs*: 1% (curtain
+    444-447 against 448-450 us), not worth the change.
+  - *The shares and their sums in separate accumulators* instead of the baseline's order: as fast
+    as the same order, which keeps the results the same bit for bit.
 - **float** gains from the 128-bit AVX2 rows as much as double from the 256-bit ones: float
   floors 0.50 -> 0.405 ms on the curtain, 0.42 -> 0.36 on skirt, 0.107 -> 0.090 on flag (old and
   new `bench_fast_mass_spring` interleaved twice, `Floor/SparseFloat`), which leaves them a few
