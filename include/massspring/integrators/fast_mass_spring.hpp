@@ -201,7 +201,7 @@ struct FastMassSpringOptions {
 /// scattering k_e d_e into the right-hand side, then one forward and one back substitution in
 /// place: no permutation, no copy of the iterate, no allocation. On the AVX2 path (double) the
 /// pass stores each spring's k_e d_e in an array of its own instead, and the forward substitution
-/// assembles each row of the right-hand side from it as it reaches the row (see spring_pass()).
+/// assembles each row of the right-hand side from it as it reaches the row (see share_pass_avx2).
 ///
 /// @tparam System a MassSpringSystem<Scalar, Storage>
 /// @tparam Cholesky_ the factorisation of Q: by default the Storage's (SparseCholesky or
