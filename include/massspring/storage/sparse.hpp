@@ -113,19 +113,11 @@ class SparseCholesky {
 
   /// @brief w = (P Q P^T)^-1 w for a #rows by 3 row-major array in the factor's order
   /// (w[3 r + c], r = permutation()[i] for Q's row i). No allocation, no permutation.
-  void solve_in_place(Scalar* w) const {
-    if (threads_ > 1)
-      lower().solve_parallel(w);
-    else
-      lower().solve(w);
-  }
+  void solve_in_place(Scalar* w) const { substitute(w, nullptr); }
   /// @brief w = (P Q P^T)^-1 rhs, the right-hand side assembled row by row inside the forward
   /// substitution (detail::RightHandSide, in the factor's order); w's rows are written, not read.
   void solve_in_place(Scalar* w, const detail::RightHandSide<Scalar>& rhs) const {
-    if (threads_ > 1)
-      lower().solve_parallel(w, &rhs);
-    else
-      lower().solve(w, &rhs);
+    substitute(w, &rhs);
   }
 
   /// @brief Threads the substitutions use (default 1). With t > 1 the rows are split along the
@@ -187,6 +179,14 @@ class SparseCholesky {
   }
 
  private:
+  // The two solve_in_place()s: on threads_ threads (the schedule is planned only for those).
+  void substitute(Scalar* w, const detail::RightHandSide<Scalar>* rhs) const {
+    if (threads_ > 1)
+      lower().solve_parallel(w, rhs);
+    else
+      lower().solve(w, rhs);
+  }
+
   Factorization llt_;
   Eigen::VectorXi perm_;
   detail::LowerFactorRows<Scalar> rows_;
