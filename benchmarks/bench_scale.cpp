@@ -4,8 +4,9 @@
 // Per grid: precompute time (build Q, order, factorise), nnz(L), the factor's bytes, time per
 // local-global iteration (steps of `--iterations` iterations), that time / (n log2 n), and the
 // process's peak resident memory so far (getrusage), and, built with OpenMP, the time per
-// iteration again with options.threads = 2 (the substitutions on two threads). Prints a Markdown
-// table.
+// iteration again with options.threads = 2 (the substitutions on two threads), and the floor: one
+// forward and one back substitution with the solver's own factor, one thread, and that time /
+// (n log2 n). Prints a Markdown table.
 //
 //   bench_scale                          # the sweep 32, 64, 128, 256, 512
 //   bench_scale --grid 1000 --frames 10  # one grid (1000 x 1000: a million points)
@@ -78,6 +79,25 @@ void run(int n, int frames, double min_time, int iterations) {
     return per_iteration[per_iteration.size() / 2] * 1e3;
   };
   const double it_ms = time_frames();
+  // The floor: one forward and one back substitution with the solver's own factor (one thread,
+  // as the frames above left it), n x 3, median wall-clock ms over as many as the frames'
+  // iterations and at least min_time seconds.
+  double floor_ms = 0;
+  {
+    const Eigen::Index rows = solver.system_matrix().rows();
+    const massspring::Points<double> start = massspring::Points<double>::Random(rows, 3);
+    massspring::Points<double> x = start;
+    std::vector<double> per_solve;
+    const auto t_start = Clock::now();
+    for (int k = 0; k < frames * iterations || seconds_since(t_start) < min_time; ++k) {
+      if (k % iterations == 0) x = start;  // as many solves in a row as a step's iterations
+      const auto t0 = Clock::now();
+      solver.factorization().solve_in_place(x.data());
+      per_solve.push_back(seconds_since(t0));
+    }
+    std::sort(per_solve.begin(), per_solve.end());
+    floor_ms = per_solve[per_solve.size() / 2] * 1e3;
+  }
   std::string two_threads = "- | -";
 #ifdef _OPENMP
   solver.options.threads = 2;
@@ -87,11 +107,12 @@ void run(int n, int frames, double min_time, int iterations) {
 #endif
   const double points = double(system.num_points());
   const double nlogn = points * std::log2(points);
-  std::printf("| %d | %d | %d | %.3f | %.3f | %ld | %.1f | %.4f | %.3f | %.1f | %s | %s |\n", n,
-              system.num_points(), system.num_springs(), scene_s, precompute_s,
-              long(solver.factor_nonzeros()),
-              double(solver.factorization().factor_bytes()) / (1024.0 * 1024.0), it_ms,
-              it_ms * 1e6 / nlogn, peak_rss_mib(), finite ? "yes" : "NO", two_threads.c_str());
+  std::printf(
+      "| %d | %d | %d | %.3f | %.3f | %ld | %.1f | %.4f | %.3f | %.1f | %s | %s | %.4f | %.3f |\n",
+      n, system.num_points(), system.num_springs(), scene_s, precompute_s,
+      long(solver.factor_nonzeros()),
+      double(solver.factorization().factor_bytes()) / (1024.0 * 1024.0), it_ms, it_ms * 1e6 / nlogn,
+      peak_rss_mib(), finite ? "yes" : "NO", two_threads.c_str(), floor_ms, floor_ms * 1e6 / nlogn);
   std::fflush(stdout);
 }
 
@@ -121,8 +142,8 @@ int main(int argc, char** argv) {
   std::printf(
       "| grid | points | springs | scene s | precompute s | nnz(L) | factor MiB | ms/iteration | "
       "ns/iteration / (n log2 n) | peak RSS MiB | finite | ms/iteration, 2 threads | 1 thread / "
-      "2 |\n"
-      "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
+      "2 | floor ms | floor ns / (n log2 n) |\n"
+      "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|\n");
   for (const int n : grids) run(n, frames, min_time, iterations);
   return 0;
 }
