@@ -224,18 +224,42 @@ NOTES = """
   bytes per spring written and read once per iteration, which the larger grids pay from the
   L3 cache or memory. Memory: 32 bytes per spring for the shares and 4 per spring and 8 per row
   for their lists, against 8 per spring and 32 per row before (the million-point cloth's peak
-  RSS, below, rose by about 85 MiB). **Not settled:** the million-point cloth. `bench_scale
-  --grid 1000 --frames 3`, the binaries before and after, one thread: before 127.8 and 127.8 ms
-  per iteration; after 193.2, 172.0 and 127.6 ms (and 130.5 in the run on this page, against
-  123.0 at the last one). Either the shares' 128 MB round trip per iteration or this machine's
-  noise; not yet told apart. The two-thread figures showed no such gap (88.6 and 101.7 after,
-  96.9 before).
+  RSS, below, rose by about 85 MiB). **The million-point cloth, one thread:** `bench_scale
+  --grid 1000 --frames 3`, the binaries before (e8fad19) and after, alternated five times in the
+  next session: before 121.7, 124.0, 123.8, 132.8 and 125.8 ms per iteration (median 124.0),
+  after 140.1, 129.4, 130.6, 135.7 and 120.8 (median 130.6); the first session's runs had read
+  127.8 and 127.8 against 193.2, 172.0 and 127.6. So the shares cost at most about 5% there, one
+  run's noise being as large; on two threads the share pass was the faster in four of five pairs
+  (85.7, 92.1, 89.8, 96.8, 89.2 against 89.0, 108.2, 102.0, 110.3, 100.5 ms). Streaming stores
+  for the shares (`_mm256_stream_pd`, which skip reading the lines before writing them; a
+  throwaway build) read 134.0 and 126.4 ms in the same alternation: nothing measurable, not kept.
 - **Slow solver instances.** Creating the same curtain's solver over and over in one process
   (a throwaway driver, 30 instances), about one in ten substituted 1.35-1.45x slower (forward or
   back) than the rest, although every array sat at the same address modulo 4096 as in a fast
   instance. So it is not the 4 KiB aliasing the scatter pass suffered from; where the pages land
   is the likely cause, which a program cannot choose. A benchmark's three repetitions each build
   their own solver, so one slow instance moves a mean, rarely a median.
+- **Target 1 measured in pairs** (`Paired/Sparse`): each step followed by as many substitutions
+  with its own factor, both on the thread's CPU clock, the ratio taken per repetition. Three runs
+  of one binary before the run on this page: paired curtain 1.27, 1.28, 1.28, flag 1.35, 1.34,
+  1.35, skirt 1.35, 1.31, 1.33; `Step/Sparse` over `Floor/Sparse` in the same runs: curtain 1.55,
+  1.25, 1.24, flag 1.23, 1.33, 1.32, skirt 1.36, 1.29, 1.26. Steadier, and not lower. A
+  throwaway driver (best of 15 runs of each part, quiet machine) puts a step of 50 iterations at
+  1.19 (curtain), 1.25 (flag), 1.24 (skirt), 1.29 (32^2) and 1.25 (64^2) floors per iteration,
+  of which one iteration alone (`iteration<false>`, no per-step work) is 1.16-1.20, 1.22-1.23,
+  1.21, 1.26 and 1.23: what is left above the floor is the share pass and the assembly (flag has
+  6.5 factor entries per spring, the curtain 11, so the springs weigh more there), and the
+  per-step work (prepare, the energies of the first and last iterations and after the last,
+  commit: 2-4% of a step of 50 iterations, 10-20% of one of 10 as in `bench_scale`).
+- **Where target 6 stands.** With the floor in the scale table: the substitutions alone grow
+  1.5x per n log2 n across the sweep, nnz(L) / (n log2 n) 1.36x of it (the best of AMD and
+  nested dissection; METIS and CHOLMOD's orders fill more, see the ordering note) and the time
+  per entry of L about 1.1-1.15x (L stops fitting in the caches from 256^2 on). Even a spring pass
+  that cost nothing would leave the iteration above 1.3x. The work above the floor grows too:
+  1.8 ns per spring at 32^2, 5.5 at 512^2 (throwaway driver, penalty pins, one iteration),
+  where the springs' data and the shares come from memory. Two threads (the columns after
+  "finite") take 512^2 to 21-29 ms per iteration from run to run; they are not a one-core figure and the target is not counted as met
+  with them.
 - **Tried with the share pass and dropped** (throwaway drivers, not kept):
   - *The share pass inside the back substitution* (springs computed as soon as the rows above
     their lower row are final, so that the back substitution's latency-bound sums could overlap
@@ -489,7 +513,8 @@ n x 3 substitution.
 
 ## Scale (`bench_scale`: cloth N x N, both diagonals, gravity, exact pins, 10 iterations per step)
 
-The last two columns repeat the iteration with `options.threads = 2`.
+The two columns after "finite" repeat the iteration with `options.threads = 2`; the last two are the
+floor (one forward and one back substitution with the same factor, one thread).
 
 {first_table(scale)}
 
