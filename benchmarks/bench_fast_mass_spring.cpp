@@ -561,21 +561,18 @@ void register_benchmarks() {
   const auto once = [](benchmark::internal::Benchmark* b) {
     b->Unit(benchmark::kMillisecond)->MinTime(0.3)->UseRealTime();
   };
-  const auto repeated = [](benchmark::internal::Benchmark* b) {
-    b->Unit(benchmark::kMillisecond)
-        ->MinTime(0.3)
-        ->Repetitions(3)
-        ->DisplayAggregatesOnly(true)
-        ->UseRealTime();
+  const auto repetitions = [](int count) {
+    return [count](benchmark::internal::Benchmark* b) {
+      b->Unit(benchmark::kMillisecond)
+          ->MinTime(0.3)
+          ->Repetitions(count)
+          ->DisplayAggregatesOnly(true)
+          ->UseRealTime();
+    };
   };
+  const auto repeated = repetitions(3);
   // The paired measurement of target 1: more repetitions, as each compares two parts of one run.
-  const auto paired = [](benchmark::internal::Benchmark* b) {
-    b->Unit(benchmark::kMillisecond)
-        ->MinTime(0.3)
-        ->Repetitions(5)
-        ->DisplayAggregatesOnly(true)
-        ->UseRealTime();
-  };
+  const auto paired = repetitions(5);
   for (const Scene& s : scenes()) {
     const Scene* sc = &s;
     const auto name = [&s](const char* what, const char* solver) {
