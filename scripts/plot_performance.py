@@ -251,6 +251,21 @@ NOTES = """
   6.5 factor entries per spring, the curtain 11, so the springs weigh more there), and the
   per-step work (prepare, the energies of the first and last iterations and after the last,
   commit: 2-4% of a step of 50 iterations, 10-20% of one of 10 as in `bench_scale`).
+- **The share pass with plain loads** (this page's run). Each end point is loaded as four
+  values with a plain 256-bit load and the fourth (the next row's first coordinate, or one
+  padding value after the last row) set to 0, instead of two masked loads; the pass reads its
+  arrays through locals (a store through `__m256d` may alias anything, so members were read again
+  after every store); and `energy_at` (the energy after the last iteration, which also records
+  each spring's direction) takes the same AVX2 pass instead of the SSE2 one. Results stay the
+  same bit for bit (tested, the recorded directions included). A throwaway driver (best of 15,
+  the headers before and after alternated twice): the share pass 60 -> 53 us on the curtain and
+  22.3 -> 19.8 us on flag; one iteration 452 -> 439 us (curtain), 127 -> 123.5 (flag), 470 -> 456
+  (skirt), 35.1 -> 33.8 (32^2); driver iteration / floor 1.245 -> 1.207 (curtain), 1.317 ->
+  1.277 (flag). `bench_fast_mass_spring --benchmark_filter='^Paired/Sparse/'`, the binaries
+  before and after alternated three times, paired it/floor: curtain 1.27, 1.26, 1.32 -> 1.25,
+  1.30, 1.26; flag 1.35, 1.35, 1.35 -> 1.32, 1.38, 1.35; skirt 1.37, 1.31, 1.33 -> 1.30, 1.32,
+  1.32. About 0.01 off each median: the benchmark's noise is as large as the gain. `energy_at`
+  (same driver): 85 -> 77 us on the curtain, 32 -> 29.7 us on flag.
 - **Where target 6 stands.** With the floor in the scale table: the substitutions alone grow
   1.5x per n log2 n across the sweep, nnz(L) / (n log2 n) 1.36x of it (the best of AMD and
   nested dissection; METIS and CHOLMOD's orders fill more, see the ordering note) and the time
@@ -270,6 +285,17 @@ NOTES = """
     444-447 against 448-450 us), not worth the change.
   - *The shares and their sums in separate accumulators* instead of the baseline's order: as fast
     as the same order, which keeps the results the same bit for bit.
+  - *The share pass inside the forward substitution* (the next chunk of 4 to 128 springs
+    computed whenever the substitution came within 0 to 100 rows of the first row not yet
+    ready, so that the divider could work beside the substitution's sums): flag 86-100 us for
+    the pass and the forward substitution together against 77 us apart, curtain 289 against 255.
+    Interleaved, the two do not overlap; each slows the other.
+  - *Each share stored a second time, in the order the rows subtract them*, so that the assembly
+    reads the subtracted shares in sequence instead of through a list: the assembly 19 -> 11 us
+    on the curtain, but the pass 52 -> 62 us (a second store per spring, to scattered places):
+    no gain.
+  - *End-point indices stored times three* again, with plain loads: flag 19.8 -> 19.2 us for the
+    pass, curtain no change; not kept.
 - **float** gains from the 128-bit AVX2 rows as much as double from the 256-bit ones: float
   floors 0.50 -> 0.405 ms on the curtain, 0.42 -> 0.36 on skirt, 0.107 -> 0.090 on flag (old and
   new `bench_fast_mass_spring` interleaved twice, `Floor/SparseFloat`), which leaves them a few

@@ -538,7 +538,8 @@ class FastMassSpring {
       mass_h2_(r) = mass(point_[std::size_t(r)]) * inv_dt2 + drag_ / dt_;
 
     const Eigen::Index size = 3 * Eigen::Index(nx_), free_size = 3 * Eigen::Index(nr_);
-    for (Buffer& b : buffers_) b.setZero(size);
+    // One value more than the iterate's rows: share_pass_avx2 loads the last row as four values.
+    for (Buffer& b : buffers_) b.setZero(size + 1);
     run_sum_.setZero(size);
     rhs0_.resize(free_size);
     // share_pass_avx2's shares and the right-hand side assembled from them, only where it can run
@@ -753,27 +754,49 @@ class FastMassSpring {
   // on the curtain, 12 or 20 us on a 32 x 32 cloth, from run to run of one binary; the share pass
   // does not vary. An iteration takes 5-12% less time (32^2 to 128^2 and the curtain; a throwaway
   // driver, quoted in the notes of docs/performance.md). Float stays on the baseline pass.
-  template <bool Energy>
+  //
+  // Without Shares it is the baseline pass's energy_at() instead: no shares, each spring of
+  // nonzero length has its direction d / |d| recorded (with the same rounding: 1 / |d| by one
+  // division, then three products), and the energy summed in the same order.
+  template <bool Energy, bool Shares = true>
   MASSSPRING_TARGET_AVX2 double share_pass_avx2(const double* x) {
     const int m = int(ends_.size());
+    // The arrays in locals: a store through __m256d may alias anything, so members would be
+    // read again after every store.
+    const SharePass pass{x,
+                         ends_.data(),
+                         kr_.data(),
+                         rest_.data(),
+                         stiffness_.data(),
+                         direction_.data(),
+                         Shares ? share_start() : nullptr};
     double energy = 0;
     int e = 0;
-    for (; e + 3 < m; e += 4) springs4_avx2<Energy, 4>(x, e, energy);
+    for (; e + 3 < m; e += 4) springs4_avx2<Energy, Shares, 4>(pass, e, energy);
     switch (m - e) {
       case 3:
-        springs4_avx2<Energy, 3>(x, e, energy);
+        springs4_avx2<Energy, Shares, 3>(pass, e, energy);
         break;
       case 2:
-        springs4_avx2<Energy, 2>(x, e, energy);
+        springs4_avx2<Energy, Shares, 2>(pass, e, energy);
         break;
       case 1:
-        springs4_avx2<Energy, 1>(x, e, energy);
+        springs4_avx2<Energy, Shares, 1>(pass, e, energy);
         break;
       default:
         break;
     }
     return energy / 2;
   }
+
+  // What share_pass_avx2 reads and writes.
+  struct SharePass {
+    const double* x;  // the iterate, one double readable past its last row (see precompute)
+    const SpringEnds* ends;
+    const double *kr, *rest, *stiffness;
+    double* direction;  // written without shares only
+    double* shares;
+  };
 
   // p[0 .. 3]; for N < 4, lanes N .. 3 repeat p[N - 1] (never read past the array).
   template <int N>
@@ -785,18 +808,37 @@ class FastMassSpring {
                            p[0]);
   }
 
+  // Lane i of v in all four lanes (the permutation needs an immediate: i is one once unrolled).
+  MASSSPRING_TARGET_AVX2 MASSSPRING_ALWAYS_INLINE static __m256d broadcast_lane(__m256d v, int i) {
+    switch (i) {
+      case 0:
+        return _mm256_permute4x64_pd(v, 0x00);
+      case 1:
+        return _mm256_permute4x64_pd(v, 0x55);
+      case 2:
+        return _mm256_permute4x64_pd(v, 0xAA);
+      default:
+        return _mm256_permute4x64_pd(v, 0xFF);
+    }
+  }
+
   // Springs e .. e + N - 1 (N <= 4) of share_pass_avx2; lanes N .. 3 repeat spring e, unused.
-  template <bool Energy, int N>
-  MASSSPRING_TARGET_AVX2 MASSSPRING_ALWAYS_INLINE void springs4_avx2(const double* x, int e,
-                                                                     double& energy) {
-    const SpringEnds* sp = ends_.data() + e;
-    const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
+  template <bool Energy, bool Shares, int N>
+  MASSSPRING_TARGET_AVX2 MASSSPRING_ALWAYS_INLINE static void springs4_avx2(const SharePass& pass,
+                                                                            int e, double& energy) {
+    const SpringEnds* sp = pass.ends + e;
+    const double* x = pass.x;
+    // d = x_a - x_b from two plain 256-bit loads, the fourth lane (the next row's first value, or
+    // the padding after the last row) set to 0: with the arrays in locals (SharePass), the pass
+    // took 53 instead of 60 us on the curtain and 19.8 instead of 22.3 us on flag, an iteration
+    // 3% less (a throwaway driver, best of 15; docs/performance.md).
     __m256d d[4];
     MASSSPRING_UNROLL
     for (int i = 0; i < 4; ++i) {
       const SpringEnds& s = sp[i < N ? i : 0];
-      d[i] = _mm256_sub_pd(_mm256_maskload_pd(x + 3 * s.a, three),
-                           _mm256_maskload_pd(x + 3 * s.b, three));
+      d[i] =
+          _mm256_blend_pd(_mm256_sub_pd(_mm256_loadu_pd(x + 3 * s.a), _mm256_loadu_pd(x + 3 * s.b)),
+                          _mm256_setzero_pd(), 0x8);
     }
     // hadd(p, q) = (p0 + p1, q0 + q1, p2 + p3, q2 + q3), and p3 = q3 = 0: the squared lengths'
     // x^2 + y^2 in the low halves, z^2 in the high ones.
@@ -806,39 +848,38 @@ class FastMassSpring {
         _mm256_add_pd(_mm256_permute2f128_pd(t0, t1, 0x20), _mm256_permute2f128_pd(t0, t1, 0x31));
     const __m256d len = _mm256_sqrt_pd(sq);
     // The clamp of detail::lengths2: f is finite, and unused, where sq is 0 or NaN.
-    const __m256d f =
-        _mm256_div_pd(load4<N>(kr_.data() + e), _mm256_max_pd(len, _mm256_set1_pd(0x1p-537)));
+    const __m256d f = _mm256_div_pd(Shares ? load4<N>(pass.kr + e) : _mm256_set1_pd(1.0),
+                                    _mm256_max_pd(len, _mm256_set1_pd(0x1p-537)));
     if constexpr (Energy) {
-      const __m256d stretch = _mm256_sub_pd(len, load4<N>(rest_.data() + e));
+      const __m256d stretch = _mm256_sub_pd(len, load4<N>(pass.rest + e));
       alignas(32) double lane[4];
-      _mm256_store_pd(
-          lane, _mm256_mul_pd(_mm256_mul_pd(load4<N>(stiffness_.data() + e), stretch), stretch));
+      _mm256_store_pd(lane,
+                      _mm256_mul_pd(_mm256_mul_pd(load4<N>(pass.stiffness + e), stretch), stretch));
       MASSSPRING_UNROLL
       for (int i = 0; i < N; ++i) energy += lane[i];
     }
     const int positive = _mm256_movemask_pd(_mm256_cmp_pd(sq, _mm256_setzero_pd(), _CMP_GT_OQ));
-    double* shares = share_start() + 4 * std::ptrdiff_t(e);
-    MASSSPRING_UNROLL
-    for (int i = 0; i < N; ++i) {
-      __m256d s;  // k r / |d| times d (the lane broadcast needs an immediate); fourth lane 0
-      switch (i) {
-        case 0:
-          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0x00), d[0]);
-          break;
-        case 1:
-          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0x55), d[1]);
-          break;
-        case 2:
-          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0xAA), d[2]);
-          break;
-        default:
-          s = _mm256_mul_pd(_mm256_permute4x64_pd(f, 0xFF), d[3]);
-          break;
+    if constexpr (!Shares) {
+      double* dir = pass.direction + 3 * std::ptrdiff_t(e);
+      MASSSPRING_UNROLL
+      for (int i = 0; i < N; ++i)
+        if (positive >> i & 1) {  // d / |d|; a spring of zero length keeps its direction
+          const __m256d u = _mm256_mul_pd(broadcast_lane(f, i), d[i]);
+          _mm_storeu_pd(dir + 3 * i, _mm256_castpd256_pd128(u));
+          _mm_store_sd(dir + 3 * i + 2, _mm256_extractf128_pd(u, 1));
+        }
+    } else {
+      double* shares = pass.shares + 4 * std::ptrdiff_t(e);
+      const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
+      MASSSPRING_UNROLL
+      for (int i = 0; i < N; ++i) {
+        // k r / |d| times d; fourth lane 0
+        __m256d s = _mm256_mul_pd(broadcast_lane(f, i), d[i]);
+        if (!(positive >> i & 1))  // zero length (or NaN): k r along the direction kept
+          s = _mm256_mul_pd(_mm256_set1_pd(pass.kr[e + i]),
+                            _mm256_maskload_pd(pass.direction + 3 * (e + i), three));
+        _mm256_store_pd(shares + 4 * i, s);
       }
-      if (!(positive >> i & 1))  // zero length (or NaN): k r along the direction kept
-        s = _mm256_mul_pd(_mm256_set1_pd(kr_[e + i]),
-                          _mm256_maskload_pd(direction_.data() + 3 * (e + i), three));
-      _mm256_store_pd(shares + 4 * i, s);
     }
   }
 #endif
@@ -943,6 +984,10 @@ class FastMassSpring {
 
   // E at x without touching any right-hand side (and recording the springs' directions).
   double energy_at(const Scalar* x) {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    if constexpr (std::is_same_v<Scalar, double>)
+      if (wide_) return start_rhs<true, false>(x, nullptr) + share_pass_avx2<true, false>(x);
+#endif
     return start_rhs<true, false>(x, nullptr) + spring_pass<false, true>(x, nullptr);
   }
 
