@@ -1137,10 +1137,11 @@ TEST_CASE("options.avx2: the AVX2 share pass gives the baseline pass's trajector
   // Dense storage's solve has no AVX2 path, so avx2 on and off differ only in the spring passes
   // (shares stored, then the right-hand side assembled from them, against the baseline's scatter;
   // and the energy with the directions recorded at the end of a step), which must do the same
-  // operations in the same order: identical positions. Cloths of several
-  // sizes leave 0, 1, 2 and 3 springs after the last group of four; points put on top of each
-  // other give zero-length springs; a tolerance makes every iteration evaluate the energy, Anderson
-  // compares energies, and both decide with the pass's energy.
+  // operations in the same order: identical positions. Cloths of several sizes leave 0, 1, 2 and
+  // 3 springs after the last group of four; points put on top of each other give zero-length
+  // springs (at the first step, and again at the fourth, which then starts from the directions
+  // the third recorded); a tolerance makes every iteration evaluate the energy, Anderson compares
+  // energies, and both decide with the pass's energy.
   using System = MassSpringSystem<double, Dense>;
   std::vector<int> tails;
   for (const auto& [columns, rows] : {std::pair{6, 5}, {7, 5}, {5, 4}, {6, 4}, {4, 4}}) {
@@ -1163,8 +1164,7 @@ TEST_CASE("options.avx2: the AVX2 share pass gives the baseline pass's trajector
       wide.precompute(b, 1.0 / 30);
       narrow.precompute(c, 1.0 / 30);
       for (int frame = 0; frame < 5; ++frame) {
-        if (frame == 3) {  // the two points on top of each other again: their spring starts the
-                           // step at zero length, along the direction the last step recorded
+        if (frame == 3) {  // the two points on top of each other again
           for (System* s : {&b, &c}) {
             Points<double> y = s->positions();
             y.row(columns + 1) = y.row(columns + 2);
