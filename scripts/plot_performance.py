@@ -350,20 +350,21 @@ NOTES = """
 """
 
 
-def fill_model_text(sweep, million_rows):
-    """Why target 6 cannot hold for an exact factor, from the sweep's own nnz(L): the least-squares
-    fit of nnz(L) / (n log2 n) = a - b / log2 n (nnz(L) = a n log2 n - b n, the form of nested
-    dissection's fill on a grid), checked against the 1000^2 row when the run has it; then the time
-    per factor entry, which is what an exact factor's substitutions can keep flat."""
+def fill_model_text(sweep, fill, million_rows):
+    """Why target 6 cannot hold for an exact factor, from the sweep's own nnz(L) (fill: nnz(L) /
+    (n log2 n) per row of the sweep): the least-squares fit of fill = a - b / log2 n (nnz(L) =
+    a n log2 n - b n, the form of nested dissection's fill on a grid), checked against the 1000^2
+    row when the run has it; then the time per factor entry, which is what an exact factor's
+    substitutions can keep flat."""
     logs = [math.log2(num(r[1])) for r in sweep]
-    ratio = [num(r[5]) / (num(r[1]) * l) for r, l in zip(sweep, logs)]
+    ratio = fill
     u = [1 / l for l in logs]
     mu, mr = sum(u) / len(u), sum(ratio) / len(ratio)
     slope = sum((x - mu) * (y - mr) for x, y in zip(u, ratio)) / sum((x - mu) ** 2 for x in u)
     a, b = mr - slope * mu, -slope
     worst = max(abs((a - b * x) / y - 1) for x, y in zip(u, ratio))
     first, last = sweep[0][0], sweep[-1][0]
-    rise = (a - b / logs[-1]) / (a - b / logs[0])
+    rise = ratio[-1] / ratio[0]
     text = (
         f"**Why target 6 cannot be met with an exact factor.** The fill of the sweep's order (the "
         f"better of AMD and nested dissection) grows like n log n with a large negative term in n: "
@@ -492,7 +493,7 @@ def main(perf):
                  if growth > 1.3 else
                  ": within 1.3x; the rest of the growth is the work above the floor."))
 
-        scale_line += "\n\n" + fill_model_text(sweep, [r for r in srows if r[0] == "1000"])
+        scale_line += "\n\n" + fill_model_text(sweep, fill, [r for r in srows if r[0] == "1000"])
 
     peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", million_time)
     elapsed = re.search(r"Elapsed \(wall clock\) time.*: (\S+)", million_time)
@@ -545,9 +546,10 @@ step's own factor, both timed by the thread's CPU clock. The next column divides
 `Floor/Sparse`, two separately built solvers: the same factor substitutes up to 1.45x slower in
 one instance than in another on this machine (see the notes), and that ratio moved by up to 0.3
 between runs of one binary where the paired one moved by 0.04 or less at the stop that introduced
-it. It is not always that steady: four runs of one build on 2026-12-01 (this page's among them)
-gave curtain 1.23-1.31, skirt 1.27-1.34 and flag 1.31-1.34, each run's five repetitions agreeing
-within 1-2%, so what moves is the process (most likely where its pages land), not the repetitions.
+it. It is not always that steady: four runs of one build on 2026-12-01 (this page's and three of
+`bench_fast_mass_spring --benchmark_filter='^Paired/Sparse/(curtain|flag|skirt)/'`) gave curtain
+1.23-1.31, skirt 1.27-1.34 and flag 1.31-1.34, each run's five repetitions agreeing within 1-2%,
+so what moves is the process (most likely where its pages land), not the repetitions.
 
 | scene | iteration / floor, paired (target <= 1.25) | Step / Floor, separate solvers | seed / ours (target >= 3x) | ours ms per iteration (curtain target <= 1.0) |
 |---|---:|---:|---:|---:|
