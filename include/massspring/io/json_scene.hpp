@@ -87,6 +87,10 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
       throw error(
           "key \"bc\" (pinned positions) is not supported: pinned vertices stay at their "
           "rest positions");
+    if (key == "massspring_state")
+      throw error(
+          "a state scene (written by io::write_scene), not a JSON+OBJ scene: load it with "
+          "io::load_scene or io::read_state_scene");
     if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png")
       throw error("unknown key \"", key, "\" (expected obj, b, k, m, png)");
   }
