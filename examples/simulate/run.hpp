@@ -181,8 +181,9 @@ Plan resolve(const Config& c, const Setup<System>& s) {
   if (steps > 100000000)
     throw Error(s.name + ": " + std::to_string(steps) +
                 " steps (its duration / dt) is more than 10^8; give --frames or --dt");
-  if (p.first_frame + steps > 99999999)
-    throw Error("--frames " + std::to_string(steps) + ": frame numbers would pass 99999999");
+  if (p.first_frame + steps > 2000000000)
+    throw Error("--frames " + std::to_string(steps) + ": frame numbers would pass 2000000000 (" +
+                s.name + " starts at frame " + std::to_string(p.first_frame) + ")");
   p.steps = int(steps);
 
   auto refuse = [&](const std::vector<std::string>& given, const std::string& needs, bool applies) {
@@ -348,7 +349,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   int signal = 0;
   std::optional<massspring::DivergenceGuard<System>> guard;
   try {
-    write_frame(frame);
+    write_frame(frame, true);  // the first frame, whatever --every says
     // The energy check (off with --guard-growth 0): a step whose total energy passes
     // E(0) + growth x scale is undone and stops the run, like a non-finite one.
     if (c.guard_growth > 0) guard.emplace(system, massspring::DivergenceOptions{c.guard_growth});

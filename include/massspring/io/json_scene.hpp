@@ -81,16 +81,16 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
     throw error("expected a JSON object {\"obj\": ..., \"b\": [...], \"k\": ...}, got ",
                 root.type_name());
 
+  if (root.contains("massspring_state"))
+    throw error(
+        "a state scene (written by io::write_scene), not a JSON+OBJ scene: load it with "
+        "io::load_scene or io::read_state_scene");
   for (const auto& item : root.items()) {
     const std::string& key = item.key();
     if (key == "bc")
       throw error(
           "key \"bc\" (pinned positions) is not supported: pinned vertices stay at their "
           "rest positions");
-    if (key == "massspring_state")
-      throw error(
-          "a state scene (written by io::write_scene), not a JSON+OBJ scene: load it with "
-          "io::load_scene or io::read_state_scene");
     if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png")
       throw error("unknown key \"", key, "\" (expected obj, b, k, m, png)");
   }

@@ -68,6 +68,16 @@ namespace detail {
 /// @brief The key that marks a JSON file as a state scene; its value is the format's version.
 inline constexpr const char* kStateSceneKey = "massspring_state";
 
+/// @brief x as the shortest text that reads back as the same double through nlohmann-json: -0 is
+/// written "-0.0" (nlohmann reads "-0" as the integer 0, losing the sign).
+inline void append_real(std::string& out, double x) {
+  if (x == 0 && std::signbit(x)) {
+    out += "-0.0";
+    return;
+  }
+  append_number(out, x);
+}
+
 template <class Derived>
 void append_rows(std::string& out, const Eigen::DenseBase<Derived>& m) {
   out += '[';
@@ -78,7 +88,7 @@ void append_rows(std::string& out, const Eigen::DenseBase<Derived>& m) {
       if constexpr (std::is_integral_v<typename Derived::Scalar>)
         append_index(out, int(m(i, c)));
       else
-        append_number(out, double(m(i, c)));
+        append_real(out, double(m(i, c)));
     }
     out += ']';
   }
@@ -90,7 +100,7 @@ void append_list(std::string& out, const Eigen::DenseBase<Derived>& v) {
   out += '[';
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (i) out += ", ";
-    append_number(out, double(v(i)));
+    append_real(out, double(v(i)));
   }
   out += ']';
 }
@@ -168,7 +178,7 @@ void write_scene(const System& system, const std::filesystem::path& path,
     } else if (const auto* d = static_cast<const LinearDrag<Scalar>*>(
                    terms[k].target(typeid(LinearDrag<Scalar>)))) {
       forces += "{\"type\": \"linear drag\", \"beta\": ";
-      detail::append_number(forces, double(d->beta));
+      detail::append_real(forces, double(d->beta));
     } else {
       throw error("force term ", k, " (", terms[k].name,
                   ") cannot be written: a state scene holds gravity, constant force and linear "
