@@ -254,6 +254,32 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--quiet", c.quiet, "Print only the median milliseconds per frame");
 
+  // --help names what each value is (all numbers are taken as text, see above).
+  for (CLI::Option* o : app.get_options()) {
+    static const std::vector<std::string> whole = {"--frames",
+                                                   "--iterations",
+                                                   "--chebyshev-delay",
+                                                   "--chebyshev-estimate-iterations",
+                                                   "--anderson-window",
+                                                   "--threads",
+                                                   "--newton-iterations",
+                                                   "--every",
+                                                   "--save-every"};
+    static const std::vector<std::string> real = {"--dt",
+                                                  "--shrink",
+                                                  "--tolerance",
+                                                  "--penalty-weight",
+                                                  "--chebyshev-rho",
+                                                  "--chebyshev-gamma",
+                                                  "--newton-tolerance",
+                                                  "--guard-growth"};
+    const std::string name = o->get_name();
+    if (std::find(whole.begin(), whole.end(), name) != whole.end()) o->type_name("INT");
+    if (std::find(real.begin(), real.end(), name) != real.end()) o->type_name("NUMBER");
+    if (name == "--gravity" || name == "--force") o->type_name("X,Y,Z");
+    if (name == "--out" || name == "--csv" || name == "--save-state" || name == "scene")
+      o->type_name("PATH");
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
