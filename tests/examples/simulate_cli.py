@@ -15,6 +15,9 @@ CASE is one of
              kept, whole, and the message names it; the header line arrives while the run goes on
   killed     a SIGKILLed run leaves <csv>.tmp; the next run names it and refuses, --overwrite
              replaces it
+  options    the solver options reach the solver: Chebyshev and Anderson change the trajectory,
+             --threads 2 gives the same one bit for bit (where OpenMP is), --ordering and
+             backward Euler's options run, the header names what runs
   resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
              frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink)
 Only the standard library."""
@@ -290,8 +293,11 @@ def killed(simulate, source, work):
     prepare(source, work)
     tmp = os.path.join(work, "k.csv.tmp")
     process = start_long_run(simulate, work, ["--csv", "k.csv"])
-    while not os.path.exists(tmp) or os.path.getsize(tmp) < 100000:
+    deadline = time.monotonic() + 300
+    while (not os.path.exists(tmp) or os.path.getsize(tmp) < 100000) and \
+            time.monotonic() < deadline and process.poll() is None:
         time.sleep(0.02)
+    check(process.poll() is None, "the run ended before it was killed")
     process.kill()
     process.communicate(timeout=60)
     check(os.path.exists(tmp) and not os.path.exists(os.path.join(work, "k.csv")),
@@ -306,6 +312,42 @@ def killed(simulate, source, work):
     check(not os.path.exists(tmp) and len(rows(os.path.join(work, "k.csv"))) == 1 + 3 * 10,
           "--overwrite: k.csv whole, no .tmp")
     print("OK: a killed run's .tmp is named and kept; --overwrite replaces it")
+
+
+def options(simulate, source, work):
+    prepare(source, work)
+    base = ["--generate", "cloth:12x10", "--frames", "15", "--iterations", "5"]
+
+    def csv_of(name, extra, header=None):
+        args = base if "--integrator" not in extra else base[:4]  # no --iterations
+        result = run(simulate, args + extra + ["--csv", name], work)
+        check(result.returncode == 0, f"{extra}: exit {result.returncode} {result.stderr}")
+        if header:
+            check(header in result.stdout.splitlines()[0], f"{extra}: header {result.stdout!r}")
+        return rows(os.path.join(work, name))
+
+    plain = csv_of("plain.csv", [], "fast-mass-spring (exact pins, 5 iterations)")
+    chebyshev = csv_of("cheb.csv", ["--acceleration", "chebyshev", "--chebyshev-delay", "1"],
+                       "5 iterations, chebyshev)")
+    anderson = csv_of("anderson.csv", ["--acceleration", "anderson", "--anderson-window", "3"],
+                      "5 iterations, anderson)")
+    check(plain != chebyshev and plain != anderson and chebyshev != anderson,
+          "the accelerations give the plain trajectory: the option does not reach the solver")
+    check(csv_of("rho.csv", ["--acceleration", "chebyshev", "--chebyshev-delay", "1",
+                             "--chebyshev-rho", "0.3"]) != chebyshev, "--chebyshev-rho ignored")
+    for order in ("solver", "nested-dissection"):
+        csv_of(f"order_{order}.csv", ["--ordering", order])
+    threads = run(simulate, base + ["--threads", "2", "--csv", "threads.csv"], work)
+    if threads.returncode == 0:
+        check(rows(os.path.join(work, "threads.csv")) == plain, "--threads 2 changed the result")
+    else:  # built without OpenMP: the solver's refusal, with exit 1
+        check(threads.returncode == 1 and "threads" in threads.stderr, threads.stderr)
+    newton = ["--integrator", "backward-euler"]
+    loose = csv_of("loose.csv", newton + ["--newton-tolerance", "1e-2", "--newton-iterations",
+                                          "2", "--line-search", "off"], "backward-euler")
+    tight = csv_of("tight.csv", newton, "backward-euler")
+    check(loose != tight, "backward Euler's tolerance and iterations do not reach the solver")
+    print("OK: accelerations, rho, orderings, threads and Newton options reach the solver")
 
 
 def resume(simulate, source, work):
@@ -361,6 +403,7 @@ def main():
              "overwrite": lambda: overwrite(simulate, source, work),
              "rename": lambda: rename(simulate, source, work),
              "killed": lambda: killed(simulate, source, work),
+             "options": lambda: options(simulate, source, work),
              "resume": lambda: resume(simulate, source, work)}
     if case not in cases:
         fail(f"unknown case {case}")
