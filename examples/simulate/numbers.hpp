@@ -14,7 +14,7 @@ namespace simulate {
 
 using massspring::Error;
 
-/// A whole number in [lo, hi]: "--frames: "abc" is not a whole number".
+/// An integer in [lo, hi]: "--frames: \"abc\" is not an integer".
 inline long long parse_integer(const std::string& option, const std::string& text, long long lo,
                                long long hi) {
   long long value = 0;
@@ -26,7 +26,7 @@ inline long long parse_integer(const std::string& option, const std::string& tex
     throw Error(option + ": " + text + " is out of range (" + std::to_string(lo) + " to " +
                 std::to_string(hi) + ")");
   if (ec != std::errc() || ptr != end || begin == end)
-    throw Error(option + ": \"" + text + "\" is not a whole number");
+    throw Error(option + ": \"" + text + "\" is not an integer");
   if (value < lo || value > hi)
     throw Error(option + ": " + text + " is out of range (" + std::to_string(lo) + " to " +
                 std::to_string(hi) + ")");
