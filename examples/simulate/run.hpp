@@ -247,8 +247,9 @@ void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System
   o.initial_guess = c.initial_guess == "inertial" ? massspring::InitialGuess::Inertial
                                                   : massspring::InitialGuess::Current;
   if (std::is_same_v<Scalar, float> && o.pins == massspring::PinMode::Penalty)
-    throw Error("--pins penalty with --precision float: w = " + std::to_string(c.penalty_weight) +
-                " swamps the rest of Q in float; use --pins exact");
+    throw Error(
+        massspring::detail::message("--pins penalty with --precision float: w = ", c.penalty_weight,
+                                    " swamps the rest of Q in float; use --pins exact"));
 }
 
 template <class System>

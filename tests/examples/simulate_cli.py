@@ -150,7 +150,7 @@ REFUSALS = [
     (["chain.json", "--gravity", "0,1"], "--gravity: At least 3 required but received 2 (see --help)"),
     (["chain.json", "--save-every", "5"], "--save-every 5: needs --save-state FILE"),
     (["chain.json", "--precision", "float", "--pins", "penalty"],
-     "--pins penalty with --precision float: w = 10000000000.000000 swamps the rest of Q in "
+     "--pins penalty with --precision float: w = 10000000000 swamps the rest of Q in "
      "float; use --pins exact"),
     (["chain.json", "--storage", "dense", "--ordering", "nested-dissection"],
      "FastMassSpring: options.ordering = NestedDissection: this storage's Cholesky takes no "
