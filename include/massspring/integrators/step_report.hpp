@@ -16,8 +16,9 @@ struct StepReport {
   /// E_0 is the energy of the starting iterate; 0 when the energy did not decrease at all.
   /// NaN when the integrator does not minimise an energy.
   double relative_decrease = std::numeric_limits<double>::quiet_NaN();
-  /// @brief The objective at the final iterate [J] (local-global: E of DESIGN.md, up to a constant
-  /// that does not depend on the iterate). NaN when the integrator has none.
+  /// @brief The objective at the final iterate [J] (local-global: E(X) of
+  /// docs/fast_mass_spring.md, up to a constant that does not depend on the iterate). NaN when the
+  /// integrator has none.
   double energy = std::numeric_limits<double>::quiet_NaN();
   /// @brief Newton-type integrators: the largest force imbalance [N] at the start of the last
   /// iteration, max |F(x) - M (x - x^t - h v^t) / h^2|. NaN when the integrator has none.
