@@ -7,8 +7,8 @@
 namespace massspring {
 
 /// @brief The outcome of one step. A step that fails (`ok() == false`: a failed factorisation, a
-/// non-finite value, or an energy blow-up caught by a DivergenceGuard) leaves the system's positions and velocities
-/// exactly as they were before the step.
+/// non-finite value, or an energy blow-up caught by a DivergenceGuard) leaves the system's
+/// positions and velocities exactly as they were before the step.
 struct StepReport {
   /// @brief Solver iterations done in this step (local-global: global solves).
   int iterations = 0;
