@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "massspring/contact/broad_phase.hpp"
 #include "massspring/contact/geometry.hpp"
@@ -39,7 +40,7 @@ class PenaltyForce {
   /// @param[in] geometry    radii, edges, planes (validated)
   /// @param[in] k           stiffness [N/m], finite, >= 0
   /// @param[in] thickness   distance added to the radii [m], finite, >= 0
-  /// @param[in] broad_phase all pairs or sort-and-sweep (same force, different cost)
+  /// @param[in] broad_phase all pairs or the grid (same force, different cost)
   PenaltyForce(ContactGeometry<Scalar> geometry, Scalar k, Scalar thickness,
                BroadPhaseKind broad_phase = BroadPhaseKind::AllPairs)
       : geometry_(std::move(geometry)), k_(k), thickness_(thickness), broad_phase_(broad_phase) {
@@ -57,23 +58,42 @@ class PenaltyForce {
   [[nodiscard]] BroadPhaseKind broad_phase() const { return broad_phase_.kind(); }
 
   void add_force(const ForceContext<Scalar>& c, Points<Scalar>& f) const {
-    visit(c.x, [&](int i, const Vector3<Scalar>& fi, int j1, Scalar s1, int j2, Scalar s2) {
-      f.row(i) += fi.transpose();
-      if (j1 >= 0) f.row(j1) -= (s1 * fi).transpose();
-      if (j2 >= 0) f.row(j2) -= (s2 * fi).transpose();
-    });
+    for (const Contact& k : contacts(c.x)) {
+      f.row(k.i) += k.f.transpose();
+      if (k.j1 >= 0) f.row(k.j1) -= (k.s1 * k.f).transpose();
+      if (k.j2 >= 0) f.row(k.j2) -= (k.s2 * k.f).transpose();
+    }
   }
 
   [[nodiscard]] Scalar energy(const ForceContext<Scalar>& c) const {
     Scalar e = 0;
-    visit(c.x, [&](int, const Vector3<Scalar>& fi, int, Scalar, int, Scalar) {
-      // |F_1| = k (s - |n|), so E = |F_1|^2 / (2 k)
-      e += fi.squaredNorm() / (2 * k_);
-    });
+    // |F_1| = k (s - |n|), so E = |F_1|^2 / (2 k)
+    for (const Contact& k : contacts(c.x)) e += k.f.squaredNorm() / (2 * k_);
     return e;
   }
 
  private:
+  /// @brief A pair in contact: F on particle i, -s1 F on j1 and -s2 F on j2 (-1: none).
+  struct Contact {
+    Vector3<Scalar> f;
+    int i, j1, j2;
+    Scalar s1, s2;
+  };
+
+  /// @brief The pairs in contact at x. The last positions' list is kept: the energy after a step
+  /// and the force at the start of the next are evaluated at the same positions, and the second
+  /// reuses the first's detection.
+  const std::vector<Contact>& contacts(const Points<Scalar>& x) const {
+    if (cached_ && x.rows() == x_.rows() && (x.array() == x_.array()).all()) return contacts_;
+    contacts_.clear();
+    visit(x, [&](int i, const Vector3<Scalar>& fi, int j1, Scalar s1, int j2, Scalar s2) {
+      contacts_.push_back({fi, i, j1, j2, s1, s2});
+    });
+    x_ = x;
+    cached_ = true;
+    return contacts_;
+  }
+
   /// @brief Calls emit(i, F_i, j1, share1, j2, share2) for every pair in contact: F_i on the
   /// particle, -share * F_i on the others (j = -1: none).
   template <class Emit>
@@ -114,7 +134,11 @@ class PenaltyForce {
 
   ContactGeometry<Scalar> geometry_;
   Scalar k_ = 0, thickness_ = 0;
-  mutable BroadPhase<Scalar> broad_phase_;  // work arrays only: the force is a function of x
+  // work arrays only: the force is a function of x
+  mutable BroadPhase<Scalar> broad_phase_;
+  mutable std::vector<Contact> contacts_;
+  mutable Points<Scalar> x_;
+  mutable bool cached_ = false;
 };
 
 }  // namespace massspring::contact

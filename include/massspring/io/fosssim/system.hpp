@@ -50,7 +50,7 @@ contact::ContactGeometry<Scalar> fosssim_contact_geometry(const FosssimScene& sc
 ///   (every `<edge>` collides, with or without a spring); "simple", "continuous-time" and
 ///   "hybrid" set the matching collision handler (contact/), "penalty" and "hybrid" add a
 ///   contact::PenaltyForce with the scene's k and thickness (none when k = 0: it would add
-///   nothing); `<collisiondetection type="contest">` selects the sort-and-sweep broad phase.
+///   nothing); `<collisiondetection type="contest">` selects the grid broad phase.
 ///
 /// @tparam System a MassSpringSystem<Scalar, Storage>
 /// @throws Error from MassSpringSystem for a description it refuses (e.g. one built by hand with
@@ -96,7 +96,7 @@ System make_fosssim_system(const FosssimScene& scene) {
     const auto& c = *scene.collision;
     const contact::ContactGeometry<Scalar> g = fosssim_contact_geometry<Scalar>(scene);
     const contact::BroadPhaseKind broad = scene.contest.value_or(false)
-                                              ? contact::BroadPhaseKind::SortAndSweep
+                                              ? contact::BroadPhaseKind::Grid
                                               : contact::BroadPhaseKind::AllPairs;
     const Scalar cor = Scalar(c.cor);
     switch (c.type) {
