@@ -45,28 +45,29 @@ struct ContactGeometry {
     const int n = num_particles();
     for (int i = 0; i < n; ++i)
       if (!(radii(i) >= 0) || !std::isfinite(double(radii(i))))
-        throw Error(detail::message(who, ": particle ", i, " radius must be finite and >= 0, got ",
-                                    radii(i)));
+        throw Error(massspring::detail::message(who, ": particle ", i,
+                                                " radius must be finite and >= 0, got ", radii(i)));
     if (edge_radii.size() != edges.rows())
-      throw Error(detail::message(who, ": ", edges.rows(), " edges but ", edge_radii.size(),
-                                  " edge radii"));
+      throw Error(massspring::detail::message(who, ": ", edges.rows(), " edges but ",
+                                              edge_radii.size(), " edge radii"));
     for (int e = 0; e < num_edges(); ++e) {
       for (int c = 0; c < 2; ++c)
         if (edges(e, c) < 0 || edges(e, c) >= n)
-          throw Error(detail::message(who, ": edge ", e, " = (", edges(e, 0), ", ", edges(e, 1),
-                                      "): particle index out of range [0, ", n, ")"));
+          throw Error(massspring::detail::message(who, ": edge ", e, " = (", edges(e, 0), ", ",
+                                                  edges(e, 1),
+                                                  "): particle index out of range [0, ", n, ")"));
       if (edges(e, 0) == edges(e, 1))
-        throw Error(
-            detail::message(who, ": edge ", e, " joins particle ", edges(e, 0), " to itself"));
+        throw Error(massspring::detail::message(who, ": edge ", e, " joins particle ", edges(e, 0),
+                                                " to itself"));
       if (!(edge_radii(e) >= 0) || !std::isfinite(double(edge_radii(e))))
-        throw Error(detail::message(who, ": edge ", e, " radius must be finite and >= 0, got ",
-                                    edge_radii(e)));
+        throw Error(massspring::detail::message(
+            who, ": edge ", e, " radius must be finite and >= 0, got ", edge_radii(e)));
     }
     for (int h = 0; h < num_planes(); ++h) {
       const auto& p = planes[std::size_t(h)];
       if (!p.point.allFinite() || !p.normal.allFinite() || !(p.normal.squaredNorm() > 0))
-        throw Error(detail::message(who, ": half-plane ", h,
-                                    " needs a finite point and a finite, non-zero normal"));
+        throw Error(massspring::detail::message(
+            who, ": half-plane ", h, " needs a finite point and a finite, non-zero normal"));
     }
   }
 };

@@ -54,6 +54,9 @@ struct BackwardEulerOptions {
 /// The pattern of A is recorded in precompute() (and again after the system's revision changes);
 /// each step assembles values into it and factorises numerically.
 ///
+/// The system's collision handler, if any, acts on the end-of-step state before it is committed
+/// (contact/collision_handler.hpp).
+///
 /// Pinned points sit at their targets (velocity (target - x) / h): their rows and columns are the
 /// identity with a zero right-hand side.
 template <class System>
