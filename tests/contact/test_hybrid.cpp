@@ -125,7 +125,7 @@ TEST_CASE("hybrid: head-on equal masses; zones only (maxiters 0) or impulses (e 
   }
 }
 
-TEST_CASE("hybrid: a break of nine balls ends with no continuous-time collision left") {
+TEST_CASE("hybrid: a break of nine balls ends with no two balls overlapping") {
   // a triangle of touching balls hit by a fast one (the shape of ImpulsesTests/test06, our
   // numbers); with 2 impulse rounds the zones must finish the job
   const int n = 10;
@@ -140,11 +140,12 @@ TEST_CASE("hybrid: a break of nine balls ends with no continuous-time collision 
   const double dt = 0.01;
   Pts xe = xs + dt * vs, ve = vs;
   apply(h, xs, vs, xe, ve, dt, Vec::Ones(n));
-  int left = 0;
+  // no two balls overlap at the end of the step (rigid zones keep their start distances, and
+  // every other collision grows a zone)
+  int overlapping = 0;
   for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j)
-      left += contact::continuous_time_test(g, contact::PairKind::PointPoint, i, j, xs, xe).hit;
-  CHECK(left == 0);
+    for (int j = i + 1; j < n; ++j) overlapping += (xe.row(i) - xe.row(j)).norm() < 0.2;
+  CHECK(overlapping == 0);
   CHECK(xe.allFinite());
   CHECK(ve.allFinite());
 }

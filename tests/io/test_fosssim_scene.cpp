@@ -101,14 +101,6 @@ std::map<std::string, int> other_forces(const std::string& cell) {
   return out;
 }
 
-// 1-based line of the first occurrence of `needle` in a file (an independent line count).
-int line_of(const fs::path& file, const std::string& needle) {
-  const std::string text = massspring::test::read_bytes(file);
-  const auto at = text.find(needle);
-  REQUIRE(at != std::string::npos);
-  return 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n'));
-}
-
 const char* const kHead =
     "<scene>\n"
     "  <duration time=\"1\"/>\n"

@@ -4,6 +4,7 @@
 /// scene t1m3/VortexExample.xml): particle j swirls around particle i.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <vector>
