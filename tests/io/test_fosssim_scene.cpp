@@ -381,7 +381,7 @@ TEST_CASE("fosssim: refusals name the file, the line and the item") {
                          Error);
   }
   SUBCASE("elements and attributes") {
-    refuses("  <vortexforce i=\"0\" j=\"1\" kbs=\"1\"/>\n", 4,
+    refuses(std::string(kTwo) + "  <vortexforce i=\"0\" j=\"1\" kbs=\"1\"/>\n", 6,
             "<vortexforce> 0: missing required attribute \"kvc\"");
     refuses("  <rigidbody/>\n", 4, "unknown element <rigidbody>");
     refuses("\n  <Particle/>\n", 5, "unknown element <Particle>");
@@ -451,7 +451,7 @@ TEST_CASE("fosssim: refusals name the file, the line and the item") {
     CHECK_THROWS_WITH_AS(
         read_fosssim_scene(type),
         contains(type.string() + ":3: <integrator>: unknown type \"rk4\" (expected "
-                                 "explicit-euler, symplectic-euler, "
+                                 "explicit-euler, symplectic-euler, forward-backward-euler, "
                                  "linearized-implicit-euler or implicit-euler)"),
         Error);
   }
