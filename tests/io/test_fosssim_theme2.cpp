@@ -2,7 +2,7 @@
 // SOURCE.md's Theme-2 table lists it (an oracle written independently of our reader: integrator,
 // dt, duration, counts, radii, collision type and parameters, detection), builds the system with
 // the handler and penalty force the scene asks for, and runs finite with its own integrator (the
-// first 200 steps here; the whole duration in the soak suite); ImpulsesTests/test06's attributes
+// first 50 steps here; the whole duration in the soak suite); ImpulsesTests/test06's attributes
 // without a blank are read as the course reads them; a Theme-2 scene round-trips through
 // write_fosssim_scene.
 #include <doctest/doctest.h>
