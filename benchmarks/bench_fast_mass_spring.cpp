@@ -40,6 +40,7 @@
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/scene/cloth.hpp>
 #include <massspring/scene/make_system.hpp>
+#include <massspring/scene/recipes.hpp>
 #include <massspring/storage/storage.hpp>
 #include <massspring/system/mass_spring_system.hpp>
 #include <memory>
@@ -499,17 +500,8 @@ void add_scenes() {
     scenes().push_back(std::move(s));
   }
   {
-    // Liu et al. 2013's curtain, as examples/project_scenes.hpp makes it (examples/scenes/curtain).
-    massspring::ClothOptions o;
-    o.columns = o.rows = 81;
-    o.width = o.height = 1.0;
-    o.shear = massspring::ClothShear::One;
-    o.bending = true;
-    o.plane = massspring::ClothPlane::Vertical;
-    o.pins = massspring::ClothPins::TopCorners;
-    o.stiffness = 1000;
-    o.mass.reset();
-    const auto description = massspring::make_cloth(o);
+    // Liu et al. 2013's curtain (massspring/scene/recipes.hpp; examples/scenes/curtain).
+    const auto description = massspring::make_cloth(massspring::curtain_recipe());
     Scene s;
     s.name = "curtain";
     s.gravity = true;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "massspring/massspring.hpp"
+#include "massspring/scene/recipes.hpp"
 
 namespace massspring::examples {
 
@@ -34,34 +35,10 @@ inline std::vector<std::pair<std::string, SceneDescription<double>>> project_sce
   net.mass = 1;
   scenes.emplace_back("net", make_net(net));
 
-  // A flag like the assignment's: quads with both diagonals, lying flat, held at two corners,
-  // masses from the lumped Voronoi areas (1.2 kg in all).
-  ClothOptions flag;
-  flag.columns = 60;
-  flag.rows = 50;
-  flag.width = 1.2;
-  flag.height = 1.0;
-  flag.shear = ClothShear::Both;
-  flag.plane = ClothPlane::Horizontal;
-  flag.pins = ClothPins::TopCorners;
-  flag.stiffness = 1000;
-  flag.mass.reset();
-  scenes.emplace_back("flag", make_cloth(flag));
-
-  // The curtain of Liu et al. 2013 (fast mass-spring): 81 x 81 points, one diagonal per cell,
-  // bending springs, hanging from its two top corners: 6561 points, 32158 springs.
-  ClothOptions curtain;
-  curtain.columns = 81;
-  curtain.rows = 81;
-  curtain.width = 1.0;
-  curtain.height = 1.0;
-  curtain.shear = ClothShear::One;
-  curtain.bending = true;
-  curtain.plane = ClothPlane::Vertical;
-  curtain.pins = ClothPins::TopCorners;
-  curtain.stiffness = 1000;
-  curtain.mass.reset();
-  scenes.emplace_back("curtain", make_cloth(curtain));
+  // A flag like the assignment's, and the curtain of Liu et al. 2013 (fast mass-spring): see
+  // massspring/scene/recipes.hpp.
+  scenes.emplace_back("flag", make_cloth(flag_recipe()));
+  scenes.emplace_back("curtain", make_cloth(curtain_recipe()));
 
   return scenes;
 }

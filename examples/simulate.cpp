@@ -1,85 +1,46 @@
-// massspring-simulate: runs a scene (a JSON+OBJ file, a FOSSSim XML file or a generated one),
-// writes OBJ frames and a CSV trajectory, and prints the time per step.
+// massspring-simulate: runs a scene (a JSON+OBJ file, a FOSSSim XML file, a state file it saved,
+// or a generated scene), writes OBJ frames and a CSV trajectory, and prints the time per step.
 //
 //   massspring-simulate examples/scenes/flag.json --frames 300 --out frames --csv traj.csv
-//   massspring-simulate --generate cloth:60x50 --gravity 0,-9.8,0
+//   massspring-simulate --generate cloth:60x50 --acceleration chebyshev --iterations 10
 //   massspring-simulate flag.json --gravity 0,0,0 --force 0,-9.8,0 --pins penalty
 //       (the assignment's conventions, for its own scenes)
 //   massspring-simulate examples/scenes_xml/orbit.xml --integrator forward-euler --every 10 --out f
 //       (an XML scene runs with the integrator it names, its dt, for its duration, unless the
 //        options say otherwise)
+//   massspring-simulate flag.json --frames 10 --save-state s.json
+//   massspring-simulate s.json --frames 10       (continues bit for bit: frames 11..20)
 //
-// Exit status: 0 on success, 1 for invalid input, 2 when a step diverged (the frames written so
-// far are kept), 130 when interrupted by SIGINT or SIGTERM (the current step is finished and its
-// frame written, the CSV closed). Every output file is written to <file>.tmp and renamed into
-// place, so no reader ever sees a truncated frame or CSV.
+// Exit status (docs/errors.md): 0 on success; 1 for invalid input or options, or an output that
+// cannot be written (refused before the first step whenever it can be known then); 2 when a step
+// diverged (the frames written so far are kept); 128 + the signal on SIGINT (130) or SIGTERM (143):
+// the current step is finished and its frame written, the CSV closed, the state saved.
+// Every message starts with "massspring-simulate: ". Outputs: see simulate/outputs.hpp.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cctype>
-#include <chrono>
-#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <iterator>
 #include <massspring/io.hpp>
+#include <massspring/io/state_scene.hpp>
 #include <massspring/massspring.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
-#include <type_traits>
 #include <vector>
+
+#include "simulate/numbers.hpp"
+#include "simulate/run.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using massspring::Edges;
 using massspring::Error;
-
-// Set by SIGINT and SIGTERM; the step loop stops after the step in progress.
-volatile std::sig_atomic_t g_interrupted = 0;  // NOLINT: written by a signal handler
-
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
-
-void install_interrupt_handlers() {
-  struct sigaction action {};
-  action.sa_handler = on_interrupt;
-  sigemptyset(&action.sa_mask);
-  // writes in progress continue; a second signal ends the program at once (the files already
-  // renamed into place are whole; a .tmp file may be left)
-  action.sa_flags = SA_RESTART | SA_RESETHAND;
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
-
-constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
-
-struct Config {
-  std::string scene;     // a .json or .xml scene file, or empty
-  std::string generate;  // cloth[:CxR], chain[:N], net[:CxR], or empty
-  int frames = 300;      // XML scenes: ceil(duration / dt) unless given
-  bool frames_given = false;
-  double dt = 1.0 / 30;  // XML scenes: the scene's unless given
-  bool dt_given = false;
-  std::string integrator;  // empty: the XML scene's, else fast-mass-spring
-  double shrink = 0;       // rest lengths l0(t) = l0(0) exp(-shrink t)
-  int iterations = 50;
-  double tolerance = 0;
-  std::string pins = "exact";
-  double penalty_weight = 1e10;
-  std::vector<double> force{0, 0, 0};
-  std::vector<double> gravity{0, -9.8, 0};
-  std::string storage = "sparse";
-  std::string precision = "double";
-  std::string out;  // folder for frame_NNNNN.obj
-  std::string csv;  // trajectory file
-  int every = 1;
-  bool quiet = false;
-  double guard_growth = 100;  // DivergenceGuard growth; 0: no energy check
-};
+using simulate::Bound;
+using simulate::Config;
 
 // "cloth:60x50" -> the generator's scene.
 massspring::SceneDescription<double> generated(const std::string& spec) {
@@ -98,360 +59,278 @@ massspring::SceneDescription<double> generated(const std::string& spec) {
                   (two ? ":COLUMNSxROWS" : ":POINTS") + " with whole numbers");
     return true;
   };
-  if (kind == "cloth") {
-    massspring::ClothOptions o;
-    if (parse_size(true)) o.columns = a, o.rows = b;
-    return massspring::make_cloth(o);
-  }
-  if (kind == "chain") {
-    massspring::ChainOptions o;
-    if (parse_size(false)) o.points = a;
-    return massspring::make_chain(o);
-  }
-  if (kind == "net") {
-    massspring::NetOptions o;
-    if (parse_size(true)) o.columns = a, o.rows = b;
-    return massspring::make_net(o);
+  try {
+    if (kind == "cloth") {
+      massspring::ClothOptions o;
+      if (parse_size(true)) o.columns = a, o.rows = b;
+      return massspring::make_cloth(o);
+    }
+    if (kind == "chain") {
+      massspring::ChainOptions o;
+      if (parse_size(false)) o.points = a;
+      return massspring::make_chain(o);
+    }
+    if (kind == "net") {
+      massspring::NetOptions o;
+      if (parse_size(true)) o.columns = a, o.rows = b;
+      return massspring::make_net(o);
+    }
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind("--generate", 0) == 0) throw;
+    throw Error("--generate " + spec + ": " + what);
   }
   throw Error("--generate " + spec + ": unknown generator \"" + kind +
               "\" (expected cloth, chain or net)");
 }
 
-// Streams frame, point, x, y, z, vx, vy, vz rows into <path>.tmp; renamed into place at close.
-class TrajectoryCsv {
- public:
-  explicit TrajectoryCsv(const std::string& path) : path_(path), tmp_(path + ".tmp") {
-    out_.open(tmp_);
-    if (!out_) throw Error(path + ": cannot open for writing");
-    out_.precision(17);
-    out_ << "frame,point,x,y,z,vx,vy,vz\n";
-  }
-  template <class System>
-  void write(int frame, const System& s) {
-    for (int i = 0; i < s.num_points(); ++i) {
-      out_ << frame << ',' << i;
-      for (int c = 0; c < 3; ++c) out_ << ',' << double(s.positions()(i, c));
-      for (int c = 0; c < 3; ++c) out_ << ',' << double(s.velocities()(i, c));
-      out_ << '\n';
-    }
-  }
-  void close() {
-    out_.close();
-    if (!out_) throw Error(path_.string() + ": write failed");
-    fs::rename(tmp_, path_);
-    closed_ = true;
-  }
-  // An unfinished CSV (an error while running) leaves no temporary file behind.
-  ~TrajectoryCsv() {
-    if (closed_) return;
-    out_.close();
-    std::error_code ignored;
-    fs::remove(tmp_, ignored);
-  }
-  TrajectoryCsv(const TrajectoryCsv&) = delete;
-  TrajectoryCsv& operator=(const TrajectoryCsv&) = delete;
-
- private:
-  fs::path path_, tmp_;
-  std::ofstream out_;
-  bool closed_ = false;
-};
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const double at = p * double(v.size() - 1);
-  const auto lo = std::size_t(at);
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (at - double(lo)) * (v[hi] - v[lo]);
-}
-
-// What a run needs besides the options: the system, what to draw, the step and the step count.
-template <class System>
-struct Setup {
-  System system;
-  std::vector<std::vector<int>> faces;  // drawn in the OBJ frames
-  Edges edges;                          // drawn in the OBJ frames (XML: every edge, springs or not)
-  double dt = 0;
-  int steps = 0;
-  std::string integrator;  // forward-euler, symplectic-euler, backward-euler, ...
-  std::string name;
-  bool from_xml = false;
-};
-
-const char* const kIntegrators[] = {"forward-euler", "symplectic-euler", "backward-euler",
-                                    "linearized-backward-euler", "fast-mass-spring"};
-
-// FOSSSim's integrator names -> ours.
-std::string our_integrator(massspring::io::FosssimIntegrator i) {
-  using massspring::io::FosssimIntegrator;
-  switch (i) {
-    case FosssimIntegrator::ExplicitEuler:
-      return "forward-euler";
-    case FosssimIntegrator::SymplecticEuler:
-      return "symplectic-euler";
-    case FosssimIntegrator::LinearizedImplicitEuler:
-      return "linearized-backward-euler";
-    case FosssimIntegrator::ImplicitEuler:
-      return "backward-euler";
-  }
-  return "symplectic-euler";
-}
-
-// The step loop shared by every integrator: time each step, write frames, stop on divergence.
-template <class System, class Solver>
-int loop(const Config& c, Setup<System>& s, Solver& solver, const std::string& what) {
-  using Scalar = typename System::Scalar;
-  System& system = s.system;
-  const auto t0 = std::chrono::steady_clock::now();
-  solver.precompute(system, Scalar(s.dt));
-  const double precompute_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (!c.quiet)
-    std::printf(
-        "%s: %d points, %d springs, %d pinned, %d force terms; %s, dt %g s, %d steps (%g s); %s, "
-        "%s; precompute %.2f ms\n",
-        s.name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
-        system.forces().size(), what.c_str(), s.dt, s.steps, s.dt * s.steps, c.storage.c_str(),
-        c.precision.c_str(), precompute_ms);
-
-  if (!c.out.empty()) fs::create_directories(c.out);
-  std::optional<TrajectoryCsv> csv;
-  if (!c.csv.empty()) csv.emplace(c.csv);
-  // `always`: the last frame of an interrupted run is written whatever --every says.
-  int last_written = -1;
-  auto write_frame = [&](int frame, bool always = false) {
-    if (frame == last_written) return;
-    if (frame % c.every != 0 && frame != s.steps && !always) return;
-    last_written = frame;
-    if (!c.out.empty()) {
-      char file[32];
-      std::snprintf(file, sizeof file, "frame_%05d.obj", frame);
-      massspring::io::write_obj(fs::path(c.out) / file, system.positions(), s.faces, s.edges);
-    }
-    if (csv) csv->write(frame, system);
-  };
-  write_frame(0);
-
-  const massspring::Vector<Scalar> rest = system.rest_lengths();
-  std::vector<double> ms;
-  ms.reserve(std::size_t(std::min(s.steps, 1 << 20)));
-  long long iterations = 0;
-  int diverged_at = -1;
-  bool blew_up = false;
-  int interrupted_at = -1;
-  // The energy check (off with --guard-growth 0): a step whose total energy passes
-  // E(0) + growth x scale is undone and stops the run, like a non-finite one.
-  std::optional<massspring::DivergenceGuard<System>> guard;
-  if (c.guard_growth > 0) guard.emplace(system, massspring::DivergenceOptions{c.guard_growth});
-  for (int step = 1; step <= s.steps; ++step) {
-    if (g_interrupted) {  // SIGINT or SIGTERM since the last step: keep its frame, stop
-      interrupted_at = step - 1;
-      write_frame(step - 1, true);
-      break;
-    }
-    if (c.shrink > 0)  // free: rest lengths do not change any matrix
-      system.set_rest_lengths(rest * Scalar(std::exp(-c.shrink * s.dt * (step - 1))));
-    const auto start = std::chrono::steady_clock::now();
-    const massspring::StepReport report = guard ? guard->step(solver, system) : solver.step(system);
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                     .count());
-    iterations += report.iterations;
-    if (!report.ok()) {
-      diverged_at = step;
-      blew_up = report.blew_up;
-      break;
-    }
-    write_frame(step);
-  }
-  if (csv) csv->close();
-
-  const int done = int(ms.size()) - (diverged_at > 0 ? 1 : 0);
-  if (!c.quiet)
-    std::printf("%d steps, %.2f iterations per step: median %.3f ms per step "
-                "(mean %.3f, p10 %.3f, p90 %.3f, max %.3f)\n",
-                done, ms.empty() ? 0.0 : double(iterations) / double(ms.size()),
-                percentile(ms, 0.5), ms.empty() ? 0.0 : [&] {
-                  double sum = 0;
-                  for (double x : ms) sum += x;
-                  return sum / double(ms.size());
-                }(),
-                percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
-  else
-    std::printf("%.3f\n", percentile(ms, 0.5));
-  if (diverged_at > 0 && blew_up) {
-    std::fprintf(stderr,
-                 "massspring-simulate: step %d: the total energy passed the divergence limit "
-                 "(%.6g J: the initial energy + %g x the scale %.6g J); stopped with the last good "
-                 "state (steps 0..%d written)\n",
-                 diverged_at, guard->limit(), c.guard_growth, guard->scale(), diverged_at - 1);
-    return 2;
-  }
-  if (diverged_at > 0) {
-    std::fprintf(stderr,
-                 "massspring-simulate: step %d: the step produced a non-finite state; stopped "
-                 "with the last finite state (steps 0..%d written)\n",
-                 diverged_at, diverged_at - 1);
-    return 2;
-  }
-  if (interrupted_at >= 0) {
-    std::fprintf(stderr, "massspring-simulate: interrupted at frame %d; frames 0..%d written%s\n",
-                 interrupted_at, interrupted_at,
-                 c.every > 1 ? " (every --every-th and the last)" : "");
-    return kExitInterrupted;
-  }
-  return 0;
-}
-
-template <class System>
-int run(const Config& c, Setup<System>& s) {
-  using Scalar = typename System::Scalar;
-  System& system = s.system;
-  massspring::Vector3<Scalar> gravity, force;
-  for (int k = 0; k < 3; ++k) {
-    gravity(k) = Scalar(c.gravity[std::size_t(k)]);
-    force(k) = Scalar(c.force[std::size_t(k)]);
-  }
-  // Every integrator reads every force from the system: JSON and generated scenes get the
-  // --gravity and --force options as force terms (an XML scene has its own). FastMassSpring
-  // treats both exactly, and the divergence guard sees their energy.
-  if (!s.from_xml) {
-    if (!gravity.isZero()) system.add_force(massspring::Gravity<Scalar>(gravity));
-    if (!force.isZero()) system.add_force(massspring::ConstantForce<Scalar>(force));
-  }
-  if (s.integrator == "fast-mass-spring") {
-    massspring::FastMassSpring<System> solver;
-    solver.options.iterations = c.iterations;
-    solver.options.tolerance = Scalar(c.tolerance);
-    solver.options.pins =
-        c.pins == "penalty" ? massspring::PinMode::Penalty : massspring::PinMode::Exact;
-    solver.options.penalty_weight = Scalar(c.penalty_weight);
-    if (std::is_same_v<Scalar, float> && solver.options.pins == massspring::PinMode::Penalty)
-      std::cerr << "massspring-simulate: warning: penalty pins (w = " << c.penalty_weight
-                << ") in float lose the rest of Q to rounding; use --pins exact\n";
-    return loop(c, s, solver, "fast-mass-spring (" + c.pins + " pins)");
-  }
-  if (s.integrator == "forward-euler") {
-    massspring::ForwardEuler<System> solver;
-    return loop(c, s, solver, s.integrator);
-  }
-  if (s.integrator == "symplectic-euler") {
-    massspring::SymplecticEuler<System> solver;
-    return loop(c, s, solver, s.integrator);
-  }
-  massspring::BackwardEuler<System> solver;
-  solver.options.mode = s.integrator == "backward-euler"
-                            ? massspring::BackwardEulerMode::Newton
-                            : massspring::BackwardEulerMode::Linearized;
-  return loop(c, s, solver, s.integrator);
-}
-
 template <class System>
 int run_scene(const Config& c) {
-  Setup<System> s{};
-  s.name = c.scene.empty() ? c.generate : c.scene;
-  fs::path path = c.scene;
-  std::string extension = path.extension().string();
-  for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (!c.scene.empty() && extension == ".xml") {
-    const massspring::io::FosssimScene scene = massspring::io::read_fosssim_scene(path);
-    s.system = massspring::io::make_fosssim_system<System>(scene);
-    s.edges = scene.edges;
-    s.from_xml = true;
-    s.dt = c.dt_given ? c.dt : scene.dt;
-    const long long steps = c.frames_given ? c.frames : scene.steps_for(s.dt);
-    if (steps > 100000000) throw Error(c.scene + ": more than 10^8 steps; give --frames or --dt");
-    s.steps = int(steps);
-    s.integrator = c.integrator.empty() ? our_integrator(scene.integrator) : c.integrator;
-  } else {
-    const massspring::SceneDescription<double> scene =
-        c.scene.empty() ? generated(c.generate) : massspring::io::read_json_scene(c.scene);
-    s.system = massspring::make_system<System>(scene);
+  simulate::Setup<System> s{};
+  if (c.scene.empty()) {
+    s.name = "--generate " + c.generate;
+    const massspring::SceneDescription<double> scene = generated(c.generate);
+    try {
+      s.system = massspring::make_system<System>(scene);
+    } catch (const Error& e) {
+      throw Error(s.name + ": " + e.what());
+    }
     s.faces = scene.faces;
     s.edges = scene.edges;
-    s.dt = c.dt;
-    s.steps = c.frames;
-    s.integrator = c.integrator.empty() ? "fast-mass-spring" : c.integrator;
+  } else {
+    s.name = c.scene;
+    massspring::io::LoadedScene<System> loaded = massspring::io::load_scene_file<System>(c.scene);
+    s.system = std::move(loaded.system);
+    s.faces = std::move(loaded.faces);
+    s.edges = std::move(loaded.edges);
+    s.inputs = std::move(loaded.files);
+    s.fosssim = std::move(loaded.fosssim);
+    s.state = loaded.state;
+    s.run_data = std::move(loaded.run);
   }
-  return run(c, s);
+  return simulate::run(c, s);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Config c;
+  // Numbers are taken as text and read by simulate/numbers.hpp (messages quote the text).
+  std::string frames = "300", dt = "0.0333333", shrink = "0", iterations = "50", tolerance = "0",
+              penalty_weight = "1e10", every = "1", guard_growth = "100", rho = "0", gamma = "1",
+              delay = "2", estimate = "100", window = "5", threads = "1", newton_iterations = "20",
+              newton_tolerance = "1e-10", save_every = "0";
+  std::vector<std::string> force{"0", "0", "0"}, gravity{"0", "-9.8", "0"};
+
   CLI::App app{
       "Simulate a mass-spring scene: local-global (Liu et al. 2013), forward, symplectic or "
-      "backward Euler."};
+      "backward Euler. Exit status: 0 done, 1 invalid input or output, 2 diverged, 128+signal "
+      "interrupted (130 SIGINT, 143 SIGTERM)."};
+  app.get_formatter()->column_width(36);
   app.add_option("scene", c.scene,
-                 "Scene file: .json (+ .obj, the assignment's format) or .xml (FOSSSim's)");
+                 "Scene file: .json (+ .obj, the assignment's format; or a state saved by "
+                 "--save-state) or .xml (FOSSSim's)");
   app.add_option("--generate", c.generate,
-                 "Generate the scene instead: cloth[:COLSxROWS], chain[:POINTS], net[:COLSxROWS]");
-  auto* frames = app.add_option("--frames", c.frames,
-                                "Steps to simulate (XML scenes: ceil(duration / dt) by default)")
-                     ->check(CLI::NonNegativeNumber)
-                     ->capture_default_str();
-  auto* dt = app.add_option("--dt", c.dt, "Time step [s] (XML scenes: the scene's by default)")
-                 ->check(CLI::PositiveNumber)
-                 ->capture_default_str();
-  app.add_option("--integrator", c.integrator,
-                 "Integrator (default: the XML scene's; fast-mass-spring for other scenes)")
-      ->check(CLI::IsMember(
-          std::vector<std::string>(std::begin(kIntegrators), std::end(kIntegrators))));
-  app.add_option("--shrink", c.shrink,
+                 "Generate the scene instead: cloth[:COLSxROWS], chain[:POINTS], net[:COLSxROWS]")
+      ->default_str("none");
+  auto* o_frames =
+      app.add_option("--frames", frames,
+                     "Steps to simulate (XML scenes: ceil(duration / dt); a saved state: steps "
+                     "after it)")
+          ->capture_default_str();
+  auto* o_dt = app.add_option("--dt", dt,
+                              "Time step [s] (default 1/30; XML scenes: the scene's; a saved "
+                              "state: its run's)")
+                   ->capture_default_str();
+  auto* o_integrator =
+      app.add_option("--integrator", c.integrator,
+                     "Integrator (default: an XML scene's or a saved state's; else "
+                     "fast-mass-spring)")
+          ->check(CLI::IsMember(std::vector<std::string>(std::begin(simulate::kIntegrators),
+                                                         std::end(simulate::kIntegrators))))
+          ->default_str("fast-mass-spring");
+  app.add_option("--shrink", shrink,
                  "Shrink every rest length as l0(t) = l0(0) exp(-RATE t) [1/s] (0: never)")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  app.add_option("--iterations", c.iterations,
-                 "Most local-global iterations per step (fast-mass-spring)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  app.add_option("--tolerance", c.tolerance,
-                 "Stop iterating when the relative energy decrease is <= this (0: never)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_option("--pins", c.pins, "How pinned points are held")
-      ->check(CLI::IsMember({"exact", "penalty"}))
-      ->capture_default_str();
-  app.add_option("--penalty-weight", c.penalty_weight, "Penalty weight w for --pins penalty [N/m]")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  app.add_option("--force", c.force, "Force on every point [N], FX,FY,FZ (not XML scenes)")
-      ->delimiter(',')
-      ->expected(3)
-      ->capture_default_str();
-  app.add_option("--gravity", c.gravity,
-                 "Acceleration of every point [m/s^2], GX,GY,GZ (XML scenes: the scene's)")
-      ->delimiter(',')
-      ->expected(3)
-      ->capture_default_str();
-  app.add_option("--storage", c.storage, "Matrix storage")
+  // Options of one integrator (or one acceleration): refused with another (simulate/run.hpp).
+  std::vector<CLI::Option*> fms, chebyshev, anderson, be;
+  fms.push_back(app.add_option("--iterations", iterations,
+                               "fast-mass-spring: most local-global iterations per step")
+                    ->capture_default_str());
+  fms.push_back(app.add_option("--tolerance", tolerance,
+                               "fast-mass-spring: stop iterating when the relative energy "
+                               "decrease is <= this (0: never)")
+                    ->capture_default_str());
+  fms.push_back(app.add_option("--pins", c.pins, "fast-mass-spring: how pinned points are held")
+                    ->check(CLI::IsMember({"exact", "penalty"}))
+                    ->capture_default_str());
+  fms.push_back(app.add_option("--penalty-weight", penalty_weight,
+                               "fast-mass-spring: penalty weight w for --pins penalty [N/m]")
+                    ->capture_default_str());
+  fms.push_back(
+      app.add_option("--acceleration", c.acceleration,
+                     "fast-mass-spring: none, chebyshev (Wang 2015) or anderson (Peng et al. "
+                     "2018)")
+          ->check(CLI::IsMember({"none", "chebyshev", "anderson"}))
+          ->capture_default_str());
+  chebyshev.push_back(
+      app.add_option("--chebyshev-rho", rho,
+                     "chebyshev: spectral radius rho in [0, 1); 0: estimated (a saved "
+                     "state: the estimate its run used)")
+          ->capture_default_str());
+  chebyshev.push_back(
+      app.add_option("--chebyshev-gamma", gamma, "chebyshev: under-relaxation in (0, 1]")
+          ->capture_default_str());
+  chebyshev.push_back(
+      app.add_option("--chebyshev-delay", delay,
+                     "chebyshev: plain iterations before the acceleration starts, >= 1")
+          ->capture_default_str());
+  chebyshev.push_back(app.add_option("--chebyshev-estimate-iterations", estimate,
+                                     "chebyshev: trial iterations to estimate rho, >= 4")
+                          ->capture_default_str());
+  anderson.push_back(
+      app.add_option("--anderson-window", window, "anderson: past iterates in the fit, 1 to 16")
+          ->capture_default_str());
+  fms.push_back(app.add_option("--threads", threads,
+                               "fast-mass-spring: threads for the substitutions (sparse storage, "
+                               "OpenMP), 1 to 256; the same result bit for bit")
+                    ->capture_default_str());
+  fms.push_back(app.add_option("--ordering", c.ordering,
+                               "fast-mass-spring: fill-reducing order of the factor: auto (the "
+                               "sparser of the other two), solver (AMD), nested-dissection")
+                    ->check(CLI::IsMember({"auto", "solver", "nested-dissection"}))
+                    ->capture_default_str());
+  fms.push_back(app.add_option("--initial-guess", c.initial_guess,
+                               "fast-mass-spring: where iterations start: current "
+                               "(X^t) or inertial (X^t + dt V^t)")
+                    ->check(CLI::IsMember({"current", "inertial"}))
+                    ->capture_default_str());
+  be.push_back(app.add_option("--newton-iterations", newton_iterations,
+                              "backward-euler: most Newton iterations per step")
+                   ->capture_default_str());
+  be.push_back(app.add_option("--newton-tolerance", newton_tolerance,
+                              "backward-euler: stop when max |dx| <= this (1 + max |x|)")
+                   ->capture_default_str());
+  be.push_back(app.add_option("--line-search", c.line_search,
+                              "backward-euler: backtracking line search, on or off")
+                   ->check(CLI::IsMember({"on", "off"}))
+                   ->capture_default_str());
+  auto* o_force =
+      app.add_option("--force", force,
+                     "Force on every point [N], FX,FY,FZ, added as a ConstantForce term (not for "
+                     "XML scenes or saved states: they carry their own)")
+          ->delimiter(',')
+          ->expected(3)
+          ->capture_default_str();
+  auto* o_gravity =
+      app.add_option("--gravity", gravity,
+                     "Acceleration of every point [m/s^2], GX,GY,GZ, added as a Gravity term "
+                     "(not for XML scenes or saved states: they carry their own)")
+          ->delimiter(',')
+          ->expected(3)
+          ->capture_default_str();
+  app.add_option("--storage", c.storage, "Matrix storage: sparse or dense")
       ->check(CLI::IsMember({"sparse", "dense"}))
       ->capture_default_str();
-  app.add_option("--precision", c.precision, "Scalar type")
+  app.add_option("--precision", c.precision, "Scalar type: double or float")
       ->check(CLI::IsMember({"double", "float"}))
       ->capture_default_str();
-  app.add_option("--out", c.out, "Write frame_NNNNN.obj files into this folder");
-  app.add_option("--csv", c.csv, "Write the trajectory (frame,point,x,y,z,vx,vy,vz) here");
-  app.add_option("--every", c.every, "Write every Nth frame (and the last)")
-      ->check(CLI::PositiveNumber)
+  app.add_option("--out", c.out, "Write frame_NNNNN.obj files into this folder")
+      ->default_str("none");
+  app.add_option("--csv", c.csv, "Write the trajectory (frame,point,x,y,z,vx,vy,vz) here")
+      ->default_str("none");
+  app.add_option("--save-state", c.save_state,
+                 "Save the final state here (a .json scene that resumes the run bit for bit)")
+      ->default_str("none");
+  app.add_option("--save-every", save_every,
+                 "Also save the state every N frames (0: at the end only)")
       ->capture_default_str();
-  app.add_option("--guard-growth", c.guard_growth,
+  app.add_flag("--overwrite", c.overwrite,
+               "Replace existing output files, a stale .tmp, and the frame files in --out");
+  app.add_option("--every", every, "Write every Nth frame (and the last)")->capture_default_str();
+  app.add_option("--guard-growth", guard_growth,
                  "Stop when the total energy passes E(0) + G x scale (DivergenceGuard; the step "
                  "times then include its energy check); 0 turns the check off")
-      ->check(CLI::NonNegativeNumber);
+      ->capture_default_str();
   app.add_flag("--quiet", c.quiet, "Print only the median milliseconds per frame");
-  CLI11_PARSE(app, argc, argv);
-  c.frames_given = frames->count() > 0;
-  c.dt_given = dt->count() > 0;
 
-  install_interrupt_handlers();
+  // --help names what each value is (all numbers are taken as text, see above).
+  for (CLI::Option* o : app.get_options()) {
+    static const std::vector<std::string> whole = {"--frames",
+                                                   "--iterations",
+                                                   "--chebyshev-delay",
+                                                   "--chebyshev-estimate-iterations",
+                                                   "--anderson-window",
+                                                   "--threads",
+                                                   "--newton-iterations",
+                                                   "--every",
+                                                   "--save-every"};
+    static const std::vector<std::string> real = {"--dt",
+                                                  "--shrink",
+                                                  "--tolerance",
+                                                  "--penalty-weight",
+                                                  "--chebyshev-rho",
+                                                  "--chebyshev-gamma",
+                                                  "--newton-tolerance",
+                                                  "--guard-growth"};
+    const std::string name = o->get_name();
+    if (std::find(whole.begin(), whole.end(), name) != whole.end()) o->type_name("INT");
+    if (std::find(real.begin(), real.end(), name) != real.end()) o->type_name("NUMBER");
+    if (name == "--gravity" || name == "--force") o->type_name("X,Y,Z");
+    if (name == "--out" || name == "--csv" || name == "--save-state" || name == "scene")
+      o->type_name("PATH");
+  }
   try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "massspring-simulate: %s (see --help)\n", e.what());
+    return simulate::kExitBadInput;
+  }
+
+  try {
+    c.frames_given = o_frames->count() > 0;
+    c.dt_given = o_dt->count() > 0;
+    c.integrator_given = o_integrator->count() > 0;
+    c.gravity_given = o_gravity->count() > 0;
+    c.force_given = o_force->count() > 0;
+    c.rho_given = chebyshev.front()->count() > 0;
+    for (auto [list, names] :
+         {std::pair{&fms, &c.given_fast_mass_spring}, std::pair{&chebyshev, &c.given_chebyshev},
+          std::pair{&anderson, &c.given_anderson}, std::pair{&be, &c.given_backward_euler}})
+      for (CLI::Option* o : *list)
+        if (o->count() > 0) names->push_back(o->get_name());
+    using simulate::parse_integer;
+    using simulate::parse_number;
+    c.frames = int(parse_integer("--frames", frames, 0, 100000000));
+    c.dt = c.dt_given ? parse_number("--dt", dt, Bound::Positive) : 1.0 / 30;
+    c.shrink = parse_number("--shrink", shrink, Bound::NonNegative);
+    c.iterations = int(parse_integer("--iterations", iterations, 1, 1000000));
+    c.tolerance = parse_number("--tolerance", tolerance, Bound::NonNegative);
+    c.penalty_weight = parse_number("--penalty-weight", penalty_weight, Bound::Positive);
+    c.chebyshev_rho = parse_number("--chebyshev-rho", rho, Bound::UnitOpen);
+    c.chebyshev_gamma = parse_number("--chebyshev-gamma", gamma, Bound::UnitHalfOpenAbove);
+    c.chebyshev_delay = int(parse_integer("--chebyshev-delay", delay, 1, 1000000));
+    c.chebyshev_estimate =
+        int(parse_integer("--chebyshev-estimate-iterations", estimate, 4, 1000000));
+    c.anderson_window = int(parse_integer("--anderson-window", window, 1, 16));
+    c.threads = int(parse_integer("--threads", threads, 1, 256));
+    c.newton_iterations = int(parse_integer("--newton-iterations", newton_iterations, 1, 1000000));
+    c.newton_tolerance = parse_number("--newton-tolerance", newton_tolerance, Bound::NonNegative);
+    c.every = int(parse_integer("--every", every, 1, 100000000));
+    c.save_every = int(parse_integer("--save-every", save_every, 0, 100000000));
+    c.guard_growth = parse_number("--guard-growth", guard_growth, Bound::NonNegative);
+    c.force = simulate::parse_vector3("--force", force);
+    c.gravity = simulate::parse_vector3("--gravity", gravity);
     if (c.scene.empty() == c.generate.empty())
       throw Error("give either a scene file or --generate (see --help)");
-    for (const auto& v : {c.force, c.gravity})
-      for (double x : v)
-        if (!std::isfinite(x)) throw Error("--force and --gravity must be finite");
+    if (c.save_every > 0 && c.save_state.empty())
+      throw Error("--save-every " + save_every + ": needs --save-state FILE");
+
+    simulate::install_interrupt_handlers();
     using massspring::Dense;
     using massspring::MassSpringSystem;
     using massspring::Sparse;
@@ -461,7 +340,8 @@ int main(int argc, char** argv) {
     if (single) return run_scene<MassSpringSystem<float, Sparse>>(c);
     return run_scene<MassSpringSystem<double, Sparse>>(c);
   } catch (const std::exception& e) {
+    std::fflush(stdout);
     std::fprintf(stderr, "massspring-simulate: %s\n", e.what());
-    return 1;
+    return simulate::kExitBadInput;
   }
 }

@@ -19,6 +19,8 @@ rm -rf "$out"
 mkdir -p "$out"
 "$build"/examples/massspring-simulate examples/scenes/flag.json \
   --frames 300 --dt 0.033333333333333333 --iterations 50 --gravity 0,-9.8,0 \
-  --out "$out/frames" --every 10 --csv "$out/trajectory.csv"
-"$python" scripts/render.py "$out/frames" --png "$out/cloth.png" --gif "$out/cloth.gif"
+  --out "$out/frames" --every 3 --csv "$out/trajectory.csv"
+# The picture: the first second (where the motion is), t in seconds, pins marked; the GIF: all 10 s.
+"$python" scripts/render.py "$out/frames" --dt 0.033333333333333333 --until 1 --panels 6 --size 2.6 \
+  --png "$out/cloth.png" --gif "$out/cloth.gif"
 echo "demo: pictures in $out/cloth.png and $out/cloth.gif"

@@ -3,6 +3,7 @@
 
     python3 scripts/render.py FRAMES_DIR [FRAMES_DIR ...] [--png strip.png] [--gif anim.gif]
         [--panels 4] [--labels a,b] [--trails] [--lengths lengths.png --frame-time S]
+        [--dt S --until S]
 
 FRAMES_DIR holds frame_NNNNN.obj files (vertices, polygons and 2-vertex edges, 1-based). The PNG
 is a strip of --panels frames spread evenly over the run; the GIF shows every frame. The y axis
@@ -10,6 +11,9 @@ of the simulation is drawn upwards. Scenes whose z is 0 throughout (FOSSSim's 2D
 in 2D; several FRAMES_DIRs (2D only) are overlaid in one picture, one colour each (--labels names
 them), and --trails draws the path of every moving point so far. --lengths plots every edge's
 length against time (frame number times --frame-time seconds) for the first FRAMES_DIR.
+With --dt (the time step: frame_NNNNN.obj is at t = NNNNN x dt) panels are titled with the time in
+seconds, and --until T spreads the PNG's panels over 0..T s (where the motion is) instead of the
+whole run. In 3D, points that never move (pinned) are marked, and the axes are labelled in metres.
 Needs python3-matplotlib (Debian).
 """
 
@@ -23,6 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import animation  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
 
 COLOURS = ["#1c4587", "#cc4125", "#38761d", "#b45f06", "#674ea7"]
@@ -55,7 +60,7 @@ def to_view(p):
     return (p[0], p[2], p[1])
 
 
-def draw(ax, frame, limits, title):
+def draw(ax, frame, limits, title, pinned=(), legend=False):
     vertices, polygons, edges = frame
     ax.cla()
     view = [to_view(v) for v in vertices]
@@ -68,15 +73,41 @@ def draw(ax, frame, limits, title):
                                              colors="#1c4587", linewidths=0.6))
     if not polygons and not edges:
         ax.scatter(*zip(*view), s=4)
+    if pinned:
+        ax.scatter(*zip(*[view[i] for i in pinned]), s=28, color="#cc0000", marker="o",
+                   depthshade=False, label="pinned", zorder=10)
+        if legend:
+            ax.legend(loc="upper right", fontsize=7, handletextpad=0.2, borderpad=0.3)
     ax.set_xlim(*limits[0])
     ax.set_ylim(*limits[1])
     ax.set_zlim(*limits[2])
-    ax.set_box_aspect([hi - lo for lo, hi in limits])
-    ax.set_xlabel("x")
-    ax.set_ylabel("z")
-    ax.set_zlabel("y")
-    ax.set_title(title, fontsize=9)
+    ax.set_box_aspect([hi - lo for lo, hi in limits], zoom=0.85)
+    ax.set_xlabel("x [m]", fontsize=8, labelpad=2)
+    ax.set_ylabel("z [m]", fontsize=8, labelpad=2)
+    ax.set_zlabel("y [m]", fontsize=8, labelpad=2)
+    ax.tick_params(labelsize=6, pad=0)
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):  # few ticks: no overlapping labels
+        axis.set_major_locator(MaxNLocator(4))
+    ax.set_title(title, fontsize=10)
     ax.view_init(elev=18, azim=-60)
+
+
+def fixed_points(frames):
+    """Points at the same place in every frame (pinned), when there are several frames."""
+    if len(frames) < 2:
+        return []
+    first = frames[0][0]
+    return [i for i in range(len(first)) if all(f[0][i] == first[i] for f in frames[1:])]
+
+
+def panel_picks(numbers, panels, dt=None, until=None):
+    """Indices of the frames shown in a strip of `panels`: spread evenly over the whole run, or
+    with dt and until over the frames at t = number x dt <= until."""
+    last = len(numbers) - 1
+    if until is not None:
+        last = max(k for k in range(len(numbers)) if numbers[k] * dt <= until + 1e-9)
+    count = max(1, min(panels, last + 1))
+    return [round(k * last / max(count - 1, 1)) for k in range(count)]
 
 
 def bounds(frames):
@@ -170,6 +201,12 @@ def main():
     parser.add_argument("--frame-time", type=float, default=1.0,
                         help="seconds between frames, for --lengths and 2D titles (default 1: "
                              "frame numbers)")
+    parser.add_argument("--dt", type=float,
+                        help="the time step [s]: frame_NNNNN.obj is at t = NNNNN x dt; titles "
+                             "give the time in seconds")
+    parser.add_argument("--until", type=float,
+                        help="with --dt: spread the PNG's panels over 0..UNTIL s (default: the "
+                             "whole run)")
     parser.add_argument("--size", type=float, default=3.2, help="panel size in inches (3.2)")
     args = parser.parse_args()
 
@@ -187,7 +224,13 @@ def main():
     frames, files = runs[0], names[0]
     count_all = max(len(r) for r in runs)
 
+    numbers = [int(f.split("_")[1]) for f in files]
+    if args.until is not None and args.dt is None:
+        sys.exit("render.py: --until needs --dt")
+
     def title(k):
+        if args.dt is not None:
+            return f"t = {numbers[min(k, len(numbers) - 1)] * args.dt:.2f} s"
         if args.frame_time != 1:
             return f"t = {k * args.frame_time:.2f} s"
         return files[min(k, len(files) - 1)]
@@ -219,14 +262,15 @@ def main():
         return
 
     limits = bounds(frames)
+    pinned = fixed_points(frames)
     if args.png:
-        count = max(1, min(args.panels, len(frames)))
-        picks = [round(k * (len(frames) - 1) / max(count - 1, 1)) for k in range(count)]
-        fig = plt.figure(figsize=(args.size * count, args.size * 1.06))
+        picks = panel_picks(numbers, args.panels, args.dt, args.until)
+        count = len(picks)
+        fig = plt.figure(figsize=(args.size * count, args.size * 1.1))
         for panel, index in enumerate(picks):
             ax = fig.add_subplot(1, count, panel + 1, projection="3d")
-            draw(ax, frames[index], limits, files[index])
-        fig.tight_layout()
+            draw(ax, frames[index], limits, title(index), pinned, legend=panel == 0)
+        fig.subplots_adjust(left=0.01, right=0.97, bottom=0.04, top=0.93, wspace=0.08)
         fig.savefig(args.png, dpi=110)
         plt.close(fig)
         print(f"render.py: wrote {args.png}")
@@ -234,7 +278,8 @@ def main():
         fig = plt.figure(figsize=(4.5, 4))
         ax = fig.add_subplot(projection="3d")
         movie = animation.FuncAnimation(
-            fig, lambda k: draw(ax, frames[k], limits, files[k]), frames=len(frames))
+            fig, lambda k: draw(ax, frames[k], limits, title(k), pinned, legend=True),
+            frames=len(frames))
         movie.save(args.gif, writer=animation.PillowWriter(fps=args.fps))
         plt.close(fig)
         print(f"render.py: wrote {args.gif}")

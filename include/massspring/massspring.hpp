@@ -26,6 +26,7 @@
 #include "massspring/scene/face_springs.hpp"
 #include "massspring/scene/make_system.hpp"
 #include "massspring/scene/net.hpp"
+#include "massspring/scene/recipes.hpp"
 #include "massspring/scene/scene_description.hpp"
 #include "massspring/scene/voronoi_masses.hpp"
 #include "massspring/storage/linear_solver.hpp"

@@ -1,11 +1,12 @@
 // storage/lower_factor.hpp: forward and back substitution against Eigen's triangular solves, in
 // double and float, on the SSE2 rows and on the AVX2 + FMA rows (where the CPU has them), the row
 // copy, the choice between the two, and a right-hand side assembled inside the forward
-// substitution (detail::RightHandSide).
+// substitution (a row source: local_global::ShareRows, the solver's).
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <massspring/integrators/local_global/share_pass.hpp>
 #include <massspring/storage/lower_factor.hpp>
 #include <massspring/storage/sparse.hpp>
 #include <random>
@@ -186,7 +187,7 @@ TEST_CASE_TEMPLATE(
   for (const int k : kinds) CHECK(k > 0);
 
   const Rows base = Rows::Random(n, 3);
-  massspring::detail::RightHandSide<Scalar> rhs;
+  massspring::local_global::ShareRows<Scalar> rhs;
   rhs.base = base.data();
   rhs.shares = shares;
   rhs.plus_begin = plus_begin.data();

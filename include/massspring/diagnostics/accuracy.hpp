@@ -9,7 +9,7 @@
 
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 
@@ -52,7 +52,7 @@ double incremental_potential(const System& system, const typename System::Points
   detail::require_number("incremental_potential", "h", h, true);
   double beta = 0;
   for (const auto& term : system.forces())
-    if (term->is_drag) beta += double(term->drag_coefficient());
+    if (term->linear_damping) beta += double(term->linear_damping_coefficient());
   double inertia = 0, drag = 0;
   for (int i = 0; i < system.num_points(); ++i) {
     const Eigen::RowVector3d dx = (x.row(i) - x_start.row(i)).template cast<double>();

@@ -18,7 +18,7 @@
 #include "massspring/diagnostics/stable_time_step.hpp"
 #include "massspring/error.hpp"
 #include "massspring/integrators/rk4.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

@@ -14,7 +14,7 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/forces/force_term.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 
@@ -111,7 +111,7 @@ FrequencyBounds frequency_bounds(const System& system) {
   b.damping_max = detail::gershgorin_rows(ev, vv, system.masses(), pinned);
   double beta = 0;
   for (const auto& term : system.forces())
-    if (term->is_drag) beta += double(term->drag_coefficient());
+    if (term->linear_damping) beta += double(term->linear_damping_coefficient());
   b.damping_min = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n; ++i)
     if (!pinned[std::size_t(i)])

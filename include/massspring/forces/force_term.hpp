@@ -16,7 +16,12 @@
 ///     static constexpr bool constant = true;                    // F reads neither c.x nor c.v
 ///     static constexpr bool symmetric = false;                  // dF/dx or dF/dv not symmetric
 ///     const char* name() const;                                 // for messages
+///     Scalar linear_damping() const;  // F = -beta v exactly: dF/dx = 0, dF/dv = -beta I
+///                                     // constant; returns beta [N s/m] (>= 0)
 ///
+/// A term that declares `linear_damping()` is folded exactly into the integrators' matrices
+/// where they can take it (FastMassSpring's Q, BackwardEuler's system) instead of being
+/// evaluated as a force; its add_force must still give F = -beta v.
 /// A term without `add_dfdx`/`add_dfdv` contributes nothing to the matrices of implicit
 /// integrators (it is treated explicitly there). `velocity_dependent` defaults to "has add_dfdv".
 /// The Jacobian functions must emit the same sequence of (row, column) entries at every call,
@@ -174,9 +179,9 @@ template <class T>
 struct has_name<T, std::void_t<decltype(std::declval<const T&>().name())>> : std::true_type {};
 
 template <class T, class = void>
-struct has_drag : std::false_type {};
+struct has_linear_damping : std::false_type {};
 template <class T>
-struct has_drag<T, std::void_t<decltype(std::declval<const T&>().drag_coefficient())>>
+struct has_linear_damping<T, std::void_t<decltype(std::declval<const T&>().linear_damping())>>
     : std::true_type {};
 
 template <class T, class = void>
@@ -212,12 +217,15 @@ class ForceConcept {
   virtual Scalar energy(const ForceContext<Scalar>& c) const = 0;
   virtual void add_dfdx(const ForceContext<Scalar>& c, JacobianSink<Scalar>& j) const = 0;
   virtual void add_dfdv(const ForceContext<Scalar>& c, JacobianSink<Scalar>& j) const = 0;
-  virtual Scalar drag_coefficient() const = 0;
+  /// beta of a term that declares linear_damping() (see the file), else 0.
+  virtual Scalar linear_damping_coefficient() const = 0;
   virtual const void* target(const std::type_info& type) const = 0;
   virtual void* target(const std::type_info& type) = 0;
 
   bool has_energy = false, has_dfdx = false, has_dfdv = false;
-  bool velocity_dependent = false, constant = false, symmetric = true, is_drag = false;
+  bool velocity_dependent = false, constant = false, symmetric = true;
+  /// The term declares linear_damping(): F = -beta v, dF/dv = -beta I constant.
+  bool linear_damping = false;
   const char* name = "force term";
 };
 
@@ -232,7 +240,7 @@ class ForceModel final : public ForceConcept<Scalar> {
     this->velocity_dependent = declared < 0 ? has_dfdv<T, Scalar>::value : declared == 1;
     this->constant = declared_constant<T>::value;
     this->symmetric = declared_symmetric<T>::value;
-    this->is_drag = has_drag<T>::value;
+    this->linear_damping = has_linear_damping<T>::value;
     this->name = term_name(term_);
   }
   std::unique_ptr<ForceConcept<Scalar>> clone() const override {
@@ -253,9 +261,9 @@ class ForceModel final : public ForceConcept<Scalar> {
   void add_dfdv(const ForceContext<Scalar>& c, JacobianSink<Scalar>& j) const override {
     if constexpr (has_dfdv<T, Scalar>::value) term_.add_dfdv(c, j);
   }
-  Scalar drag_coefficient() const override {
-    if constexpr (has_drag<T>::value)
-      return term_.drag_coefficient();
+  Scalar linear_damping_coefficient() const override {
+    if constexpr (has_linear_damping<T>::value)
+      return term_.linear_damping();
     else
       return Scalar(0);
   }

@@ -8,7 +8,7 @@
 
 #include "massspring/forces/force_term.hpp"
 #include "massspring/forces/springs.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

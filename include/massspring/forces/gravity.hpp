@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 
 #include "massspring/forces/force_term.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

@@ -3,7 +3,7 @@
 /// @brief LinearDrag: F_i = -beta v_i, the same coefficient for every point (not scaled by mass).
 
 #include "massspring/forces/force_term.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {
@@ -22,6 +22,9 @@ struct LinearDrag {
 
   static constexpr bool velocity_dependent = true;
   [[nodiscard]] const char* name() const { return "linear drag"; }
+  /// @brief beta: the term declares F = -beta v with dF/dv = -beta I (see force_term.hpp).
+  [[nodiscard]] Scalar linear_damping() const { return beta; }
+  /// @brief beta (the older name of linear_damping()).
   [[nodiscard]] Scalar drag_coefficient() const { return beta; }
 
   void add_force(const ForceContext<Scalar>& c, Points<Scalar>& f) const { f -= beta * c.v; }

@@ -13,7 +13,7 @@
 #include "massspring/integrators/detail/jacobian_assembly.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/linear_solver.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
 
@@ -179,7 +179,7 @@ class BackwardEuler {
     symmetric_ = jacobians_symmetric(system);
     drag_ = 0;
     for (const auto& term : system.forces())
-      if (term->is_drag) drag_ += term->drag_coefficient();
+      if (term->linear_damping) drag_ += term->linear_damping_coefficient();
   }
 
   /// @brief True when the incremental potential is an objective: every force has an energy or is
@@ -187,7 +187,7 @@ class BackwardEuler {
   static bool potential_objective(const System& system) {
     if (system.has_spring_damping()) return false;
     for (const auto& term : system.forces())
-      if (!term->has_energy && !term->is_drag) return false;
+      if (!term->has_energy && !term->linear_damping) return false;
     return true;
   }
 

@@ -6,8 +6,8 @@
 
 namespace massspring {
 
-/// @brief The outcome of one step. A step that fails (`ok() == false`: a non-finite value, or an
-/// energy blow-up caught by a DivergenceGuard) leaves the system's positions and velocities
+/// @brief The outcome of one step. A step that fails (`ok() == false`: a failed factorisation, a
+/// non-finite value, or an energy blow-up caught by a DivergenceGuard) leaves the system's positions and velocities
 /// exactly as they were before the step.
 struct StepReport {
   /// @brief Solver iterations done in this step (local-global: global solves).
@@ -16,8 +16,9 @@ struct StepReport {
   /// E_0 is the energy of the starting iterate; 0 when the energy did not decrease at all.
   /// NaN when the integrator does not minimise an energy.
   double relative_decrease = std::numeric_limits<double>::quiet_NaN();
-  /// @brief The objective at the final iterate [J] (local-global: E of DESIGN.md, up to a constant
-  /// that does not depend on the iterate). NaN when the integrator has none.
+  /// @brief The objective at the final iterate [J] (local-global: E(X) of
+  /// docs/fast_mass_spring.md, up to a constant that does not depend on the iterate). NaN when the
+  /// integrator has none.
   double energy = std::numeric_limits<double>::quiet_NaN();
   /// @brief Newton-type integrators: the largest force imbalance [N] at the start of the last
   /// iteration, max |F(x) - M (x - x^t - h v^t) / h^2|. NaN when the integrator has none.
@@ -29,12 +30,16 @@ struct StepReport {
   bool finite = true;
   /// @brief True when this step had to factorise again because the model changed since the last.
   bool refactorized = false;
+  /// @brief True when this step had to factorise again and the matrix could not be factorised
+  /// (not numerically positive definite). Nothing was changed; the next step tries again.
+  bool factorization_failed = false;
   /// @brief True when a DivergenceGuard found the total energy after this step beyond its limit
   /// (an energy blow-up). The guard then restored the state from before the step.
   bool blew_up = false;
 
-  /// @brief A step succeeded when its result is finite and its energy did not blow up.
-  [[nodiscard]] bool ok() const { return finite && !blew_up; }
+  /// @brief A step succeeded when it could factorise, its result is finite and its energy did not
+  /// blow up.
+  [[nodiscard]] bool ok() const { return finite && !blew_up && !factorization_failed; }
 };
 
 }  // namespace massspring

@@ -81,6 +81,10 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
     throw error("expected a JSON object {\"obj\": ..., \"b\": [...], \"k\": ...}, got ",
                 root.type_name());
 
+  if (root.contains("massspring_state"))
+    throw error(
+        "a state scene (written by io::write_scene), not a JSON+OBJ scene: load it with "
+        "io::load_scene or io::read_state_scene");
   for (const auto& item : root.items()) {
     const std::string& key = item.key();
     if (key == "bc")
@@ -171,8 +175,9 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 /// @throws Error naming the file and the key for a missing, unknown, repeated or mistyped key,
 /// `"bc"` (pinned positions: not supported), a pin out of range (its 1-based value and its
 /// position in "b"), a non-finite or negative stiffness, a mass that is not > 0; naming the file
-/// with nlohmann's line and column when the text is not JSON; and read_obj()'s errors (file and
-/// line) for the OBJ file.
+/// with nlohmann's line and column when the text is not JSON; for a state scene (the key
+/// "massspring_state": written by write_scene(), read by load_scene() or read_state_scene()); and
+/// read_obj()'s errors (file and line) for the OBJ file.
 template <class Scalar = double>
 SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
   const std::string text = detail::read_text_file(json, "JSON scene");

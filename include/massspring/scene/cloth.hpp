@@ -9,7 +9,7 @@
 
 #include "massspring/error.hpp"
 #include "massspring/scene/scene_description.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

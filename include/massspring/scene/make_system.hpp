@@ -6,7 +6,7 @@
 #include "massspring/scene/face_springs.hpp"
 #include "massspring/scene/scene_description.hpp"
 #include "massspring/scene/voronoi_masses.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "massspring/error.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

@@ -135,7 +135,8 @@ class CholmodCholesky {
   void solve_in_place(Scalar* w) const { lower().solve(w); }
   /// @brief w = (P Q P^T)^-1 rhs, assembled inside the forward substitution (see
   /// SparseCholesky::solve_in_place).
-  void solve_in_place(Scalar* w, const detail::RightHandSide<Scalar>& rhs) const {
+  template <class Rows>
+  void solve_in_place(Scalar* w, const Rows& rhs) const {
     lower().solve(w, &rhs);
   }
   /// @brief x = Q^-1 b for a #rows by 3 right-hand side. No allocation; b and x may be the same.

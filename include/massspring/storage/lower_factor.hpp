@@ -2,72 +2,40 @@
 /// @file
 /// @brief detail::LowerFactor and detail::LowerFactorRows: forward and back substitution with a
 /// sparse Cholesky factor L for three right-hand sides at once, in place, allocation-free, with
-/// an AVX2 + FMA version chosen at run time (system/detail/avx2.hpp), and detail::RightHandSide,
-/// a right-hand side the forward substitution assembles row by row as it goes.
+/// an AVX2 + FMA version chosen at run time (storage/lower_factor_simd.hpp). The forward
+/// substitution may take its right-hand side from a row source, row by row as it reaches each row
+/// (see LowerFactor::forward_rows), instead of from w.
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
-#include "massspring/system/detail/avx2.hpp"
+#include "massspring/detail/simd.hpp"
+#include "massspring/storage/lower_factor_simd.hpp"
 
 namespace massspring {
 namespace detail {
 
-template <class Scalar, class Index>
-struct LowerFactor;
+/// @brief The row source of a substitution whose right-hand side is in w already.
+struct RightHandSideInPlace {};
 
-/// @brief A right-hand side assembled row by row as the forward substitution reaches it, instead
-/// of in a pass of its own: row i is base_i, minus the shares minus_share[minus_begin[i] ..
-/// minus_begin[i + 1]) in that order, plus the sum of the consecutive shares plus_begin[i] ..
-/// plus_begin[i + 1] - 1 (summed first to last, then added). A share is four Scalars (the fourth
-/// never reaches w), the array aligned to four Scalars (16 bytes for float, 32 for double) for
-/// the AVX2 rows. FastMassSpring's springs: each spring's k r d / |d| is one share, added to its
-/// lower row and subtracted from its higher one (the order of its baseline spring pass: the same
-/// result bit for bit).
-template <class Scalar>
-struct RightHandSide {
-  const Scalar* base = nullptr;  // rows * 3, row-major (w[3 r + c])
-  const Scalar* shares = nullptr;
-  const int* plus_begin = nullptr;   // rows + 1
-  const int* minus_begin = nullptr;  // rows + 1
-  const int* minus_share = nullptr;
-
-  /// @brief Row i into out[0 .. 2], in the order documented above (the baseline rows' version).
-  void row(int i, Scalar* out) const {
-    Scalar r0 = base[3 * i], r1 = base[3 * i + 1], r2 = base[3 * i + 2];
-    for (int q = minus_begin[i]; q < minus_begin[i + 1]; ++q) {
-      const Scalar* s = shares + 4 * std::ptrdiff_t(minus_share[q]);
-      r0 -= s[0], r1 -= s[1], r2 -= s[2];
-    }
-    const int first = plus_begin[i], last = plus_begin[i + 1];
-    if (first < last) {
-      const Scalar* s = shares + 4 * std::ptrdiff_t(first);
-      Scalar a0 = s[0], a1 = s[1], a2 = s[2];
-      for (int e = first + 1; e < last; ++e) {
-        s += 4;
-        a0 += s[0], a1 += s[1], a2 += s[2];
-      }
-      r0 += a0, r1 += a1, r2 += a2;
-    }
-    out[0] = r0, out[1] = r1, out[2] = r2;
-  }
-};
-
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-template <bool Assemble, class Scalar, class Index>
-MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
-                                              const Index* order, Index begin, Index end, Scalar* w,
-                                              const RightHandSide<Scalar>* rhs);
-template <class Scalar, class Index>
-MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>& f,
-                                               const Index* order, Index begin, Index end,
-                                               Scalar* w);
-#endif
+/// @brief Whether Rows is a row source that LowerFactor's forward substitution can read a
+/// right-hand side from, row by row: it must have `void row(int i, Scalar* out) const` (row i's
+/// three values) and, for the AVX2 rows, `template <class R> typename R::V row_simd(int i) const`
+/// returning the same three values, rounded the same way, in a detail::Row3<Scalar> register
+/// (fourth lane 0), compiled with MASSSPRING_TARGET_AVX2.
+template <class Rows, class Scalar, class = void>
+struct is_row_source : std::false_type {};
+template <class Rows, class Scalar>
+struct is_row_source<
+    Rows, Scalar,
+    std::void_t<decltype(std::declval<const Rows&>().row(0, std::declval<Scalar*>()))>>
+    : std::true_type {};
 
 /// @brief A lower factor L (column j's diagonal first in the column-compressed arrays) with its
 /// inverse diagonal and a row-compressed copy of its strict lower part, and forward and back
@@ -78,10 +46,8 @@ MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>&
 /// the forward one walks the row copy upward, the back one walks the columns downward, each
 /// column from its last entry to its first, so that every array is read in one direction only and
 /// the hardware prefetcher follows it. Each sum is split over two sets of accumulators (four in the
-/// AVX2 rows), so that the additions do not form one chain of dependent latencies. On the 2.6 GHz
-/// EPYC of the project's measurements this halves the solve of a 256 x 256 cloth against a
-/// column-oriented (scatter) forward substitution and a back substitution reading each column
-/// upward (see docs/performance.md).
+/// AVX2 rows), so that the additions do not form one chain of dependent latencies
+/// (docs/performance.md compares it with a column-oriented substitution).
 ///
 /// forward_row() and backward_row() are the baseline (SSE2) rows. forward_rows(), backward_rows()
 /// and everything built on them take the AVX2 + FMA rows instead when `wide` is set: the same
@@ -108,19 +74,27 @@ struct LowerFactor {
   /// with one rounding (a fused multiply-add) instead of two.
   bool wide = false;
 
-  /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself); with `rhs`,
-  /// row i of the right-hand side is rhs->row(i) instead of w's row i, which is not read.
+  /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself). With a row
+  /// source `rhs` (see is_row_source), row i of the right-hand side is rhs->row(i) instead of w's
+  /// row i, which is not read.
+  template <class Rows = RightHandSideInPlace>
   void forward_rows(const Index* order, Index begin, Index end, Scalar* w,
-                    const RightHandSide<Scalar>* rhs = nullptr) const {
+                    const Rows* rhs = nullptr) const {
+    constexpr bool source = !std::is_same_v<Rows, RightHandSideInPlace>;
+    static_assert(!source || is_row_source<Rows, Scalar>::value,
+                  "LowerFactor::forward_rows: the row source must have "
+                  "`void row(int i, Scalar* out) const` (see detail::is_row_source)");
 #ifdef MASSSPRING_HAVE_AVX2_PATH
     if (wide) {
-      if (rhs) return forward_rows_avx2<true>(*this, order, begin, end, w, rhs);
+      if constexpr (source)
+        if (rhs) return forward_rows_avx2<true>(*this, order, begin, end, w, rhs);
       return forward_rows_avx2<false>(*this, order, begin, end, w, rhs);
     }
 #endif
     for (Index q = begin; q < end; ++q) {
       const Index i = order ? order[q] : q;
-      if (rhs) rhs->row(int(i), w + 3 * i);
+      if constexpr (source)
+        if (rhs) rhs->row(int(i), w + 3 * i);
       forward_row(i, w);
     }
   }
@@ -142,7 +116,8 @@ struct LowerFactor {
   }
 
   /// @brief The forward substitution L z = w in place (with `rhs`: L z = rhs, into w).
-  void forward(Scalar* w, const RightHandSide<Scalar>* rhs = nullptr) const {
+  template <class Rows = RightHandSideInPlace>
+  void forward(Scalar* w, const Rows* rhs = nullptr) const {
     forward_rows(nullptr, 0, n, w, rhs);
   }
 
@@ -160,7 +135,8 @@ struct LowerFactor {
 
   /// @brief w = (L L^T)^-1 w; with `rhs`, w = (L L^T)^-1 rhs (w's rows 0 .. n - 1 written, not
   /// read: the right-hand side is assembled as the forward substitution reaches each row).
-  void solve(Scalar* w, const RightHandSide<Scalar>* rhs = nullptr) const {
+  template <class Rows = RightHandSideInPlace>
+  void solve(Scalar* w, const Rows* rhs = nullptr) const {
     forward(w, rhs);
     backward(w);
   }
@@ -170,7 +146,8 @@ struct LowerFactor {
   /// top after a barrier, forward then back, and after a second barrier each thread its part
   /// back. The same operations as solve() in the same order within each row: the same result, bit
   /// for bit. Without OpenMP (or without a schedule) it is solve(). `rhs` as in solve().
-  void solve_parallel(Scalar* w, const RightHandSide<Scalar>* rhs = nullptr) const {
+  template <class Rows = RightHandSideInPlace>
+  void solve_parallel(Scalar* w, const Rows* rhs = nullptr) const {
 #ifdef _OPENMP
     if (parts < 2) return solve(w, rhs);
 #pragma omp parallel num_threads(parts)
@@ -219,163 +196,6 @@ struct LowerFactor {
     w[3 * r + 2] = (s2 - t2) * inv;
   }
 };
-
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-// The AVX2 + FMA rows: the same sums as LowerFactor::forward_row and backward_row, over four
-// accumulator sets (entries 4k, 4k + 1, 4k + 2, 4k + 3; the last count % 4 entries go to the
-// first), each holding a row of w (three values) in one register whose fourth lane is zero (256
-// bits for double, 128 for float), each product added by one fused multiply-add. Four sets
-// instead of the baseline's two: a fused multiply-add's latency is four of its issue slots, and
-// the solve took 1-8% less time (the curtain's 396 -> 365 us, 32^2 cloth's 25.9 -> 25.7 us; a
-// throwaway driver, quoted in the notes of docs/performance.md).
-// - The forward substitution loads a row with one masked load. The back substitution reads rows
-//   it has just stored, and a load of a row stored as two narrower stores waits for the stores to
-//   reach the cache, so there a row is loaded as its first two values and its third: measured
-//   faster (docs/performance.md).
-// - A row is stored as its first two values and its third, never the fourth lane (the next
-//   row's first value).
-// Row3<Scalar>'s functions take and return vector registers; they are always inlined into the
-// AVX2 functions below, so GCC's note that such a signature's ABI depends on -mavx is moot.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-#define MASSSPRING_ROW3 MASSSPRING_TARGET_AVX2 __attribute__((always_inline)) static inline
-
-template <class Scalar>
-struct Row3;
-
-template <>
-struct Row3<double> {
-  using V = __m256d;
-  MASSSPRING_ROW3 V zero() { return _mm256_setzero_pd(); }
-  MASSSPRING_ROW3 V load(const double* p) {
-    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p)), _mm_load_sd(p + 2), 1);
-  }
-  MASSSPRING_ROW3 V load_masked(const double* p) {
-    return _mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0));
-  }
-  MASSSPRING_ROW3 V load_share(const double* p) { return _mm256_load_pd(p); }  // 32-byte aligned
-  MASSSPRING_ROW3 V add(V a, V b) { return _mm256_add_pd(a, b); }
-  MASSSPRING_ROW3 V sub(V a, V b) { return _mm256_sub_pd(a, b); }
-  MASSSPRING_ROW3 void store(double* p, V v) {
-    _mm_storeu_pd(p, _mm256_castpd256_pd128(v));
-    _mm_store_sd(p + 2, _mm256_extractf128_pd(v, 1));
-  }
-  MASSSPRING_ROW3 V sub_product(const double* l, V x, V acc) {  // acc - l x
-    return _mm256_fnmadd_pd(_mm256_broadcast_sd(l), x, acc);
-  }
-  MASSSPRING_ROW3 V add_product(const double* l, V x, V acc) {  // acc + l x
-    return _mm256_fmadd_pd(_mm256_broadcast_sd(l), x, acc);
-  }
-  MASSSPRING_ROW3 V finish(V s, V t, V u, V v, double inv) {  // ((s - t) + (u - v)) inv
-    return _mm256_mul_pd(_mm256_add_pd(_mm256_sub_pd(s, t), _mm256_sub_pd(u, v)),
-                         _mm256_set1_pd(inv));
-  }
-};
-
-template <>
-struct Row3<float> {
-  using V = __m128;
-  MASSSPRING_ROW3 V zero() { return _mm_setzero_ps(); }
-  MASSSPRING_ROW3 V load(const float* p) {  // (x, y) through __m64 (may alias), then z
-    return _mm_movelh_ps(_mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(p)),
-                         _mm_load_ss(p + 2));
-  }
-  MASSSPRING_ROW3 V load_masked(const float* p) {
-    return _mm_maskload_ps(p, _mm_setr_epi32(-1, -1, -1, 0));
-  }
-  MASSSPRING_ROW3 V load_share(const float* p) { return _mm_load_ps(p); }  // 16-byte aligned
-  MASSSPRING_ROW3 V add(V a, V b) { return _mm_add_ps(a, b); }
-  MASSSPRING_ROW3 V sub(V a, V b) { return _mm_sub_ps(a, b); }
-  MASSSPRING_ROW3 void store(float* p, V v) {
-    _mm_storel_pi(reinterpret_cast<__m64*>(p), v);
-    _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
-  }
-  MASSSPRING_ROW3 V sub_product(const float* l, V x, V acc) {
-    return _mm_fnmadd_ps(_mm_broadcast_ss(l), x, acc);
-  }
-  MASSSPRING_ROW3 V add_product(const float* l, V x, V acc) {
-    return _mm_fmadd_ps(_mm_broadcast_ss(l), x, acc);
-  }
-  MASSSPRING_ROW3 V finish(V s, V t, V u, V v, float inv) {
-    return _mm_mul_ps(_mm_add_ps(_mm_sub_ps(s, t), _mm_sub_ps(u, v)), _mm_set1_ps(inv));
-  }
-};
-#undef MASSSPRING_ROW3
-
-// RightHandSide::row(i) in a register: the same operations in the same order.
-template <class Scalar>
-MASSSPRING_TARGET_AVX2 __attribute__((always_inline)) inline typename Row3<Scalar>::V
-assemble_row_avx2(const RightHandSide<Scalar>& rhs, int i) {
-  using R = Row3<Scalar>;
-  auto r = R::load_masked(rhs.base + 3 * i);
-  for (int q = rhs.minus_begin[i]; q < rhs.minus_begin[i + 1]; ++q)
-    r = R::sub(r, R::load_share(rhs.shares + 4 * std::ptrdiff_t(rhs.minus_share[q])));
-  const int first = rhs.plus_begin[i], last = rhs.plus_begin[i + 1];
-  if (first < last) {
-    const Scalar* s = rhs.shares + 4 * std::ptrdiff_t(first);
-    auto a = R::load_share(s);
-    for (int e = first + 1; e < last; ++e) a = R::add(a, R::load_share(s += 4));
-    r = R::add(r, a);
-  }
-  return r;
-}
-
-// Assemble: row i of the right-hand side from *rhs (not null) instead of w; an instantiation of
-// its own, so that the plain solve has no test per row.
-template <bool Assemble, class Scalar, class Index>
-MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const LowerFactor<Scalar, Index>& f,
-                                              const Index* order, Index begin, Index end, Scalar* w,
-                                              const RightHandSide<Scalar>* rhs) {
-  using R = Row3<Scalar>;
-  for (Index q = begin; q < end; ++q) {
-    const Index i = order ? order[q] : q;
-    const Index* idx = f.row_inner + f.row_outer[i];
-    const Scalar* l = f.row_value + f.row_outer[i];
-    Index count = f.row_outer[i + 1] - f.row_outer[i];
-    typename R::V s;
-    if constexpr (Assemble)
-      s = assemble_row_avx2(*rhs, int(i));
-    else
-      s = R::load(w + 3 * i);
-    auto t = R::zero(), u = R::zero(), v = R::zero();
-    for (; count >= 4; count -= 4, idx += 4, l += 4) {
-      s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
-      t = R::add_product(l + 1, R::load_masked(w + 3 * idx[1]), t);
-      u = R::sub_product(l + 2, R::load_masked(w + 3 * idx[2]), u);
-      v = R::add_product(l + 3, R::load_masked(w + 3 * idx[3]), v);
-    }
-    for (; count > 0; --count, ++idx, ++l) s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
-    R::store(w + 3 * i, R::finish(s, t, u, v, f.inv_diag[i]));
-  }
-}
-
-template <class Scalar, class Index>
-MASSSPRING_TARGET_AVX2 void backward_rows_avx2(const LowerFactor<Scalar, Index>& f,
-                                               const Index* order, Index begin, Index end,
-                                               Scalar* w) {
-  using R = Row3<Scalar>;
-  for (Index q = end - 1; q >= begin; --q) {
-    const Index j = order ? order[q] : q;
-    Index count = f.outer[j + 1] - 1 - f.outer[j];
-    const Index* idx = f.inner + f.outer[j + 1] - 1;  // the diagonal is at outer[j]
-    const Scalar* l = f.value + f.outer[j + 1] - 1;
-    auto s = R::load(w + 3 * j), t = R::zero(), u = R::zero(), v = R::zero();
-    for (; count >= 4; count -= 4, idx -= 4, l -= 4) {
-      s = R::sub_product(l, R::load(w + 3 * idx[0]), s);
-      t = R::add_product(l - 1, R::load(w + 3 * idx[-1]), t);
-      u = R::sub_product(l - 2, R::load(w + 3 * idx[-2]), u);
-      v = R::add_product(l - 3, R::load(w + 3 * idx[-3]), v);
-    }
-    for (; count > 0; --count, --idx, --l) s = R::sub_product(l, R::load(w + 3 * idx[0]), s);
-    R::store(w + 3 * j, R::finish(s, t, u, v, f.inv_diag[j]));
-  }
-}
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
-#endif
 
 /// @brief What LowerFactor needs beyond the column-compressed factor: the inverse diagonal and the
 /// row-compressed strict lower part (a second copy of the off-diagonal entries, built once).

@@ -9,10 +9,8 @@
 /// separators. Here the split is geometric: the points are cut at the median of their projection
 /// on one of nine directions (the three axes and the six diagonals of the coordinate planes), and
 /// the separator is one side's boundary (its vertices with a neighbour on the other side), the
-/// direction with the smallest separator winning. On cloth grids from 128 x 128 points up this
-/// gives 4-37% fewer nonzeros in L than Eigen's AMD (more on larger grids, and on the curtain's
-/// skip-one springs than on both diagonals); below about 80 x 80 points, and on irregular meshes
-/// such as the assignment's flag and skirt, AMD fills less (docs/performance.md). FastMassSpring
+/// direction with the smallest separator winning. On large cloth grids this fills less than Eigen's
+/// AMD, on small grids and irregular meshes AMD fills less (docs/performance.md): FastMassSpring
 /// counts both and takes the smaller (FastMassSpringOptions::ordering).
 
 #include <Eigen/Core>
@@ -24,8 +22,8 @@
 #include <numeric>
 #include <vector>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
-#include "massspring/system/detail/validate.hpp"
 
 namespace massspring {
 

@@ -12,11 +12,11 @@
 #include <cstddef>
 #include <vector>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/storage/lower_factor.hpp"
 #include "massspring/storage/nested_dissection.hpp"
 #include "massspring/storage/tags.hpp"
-#include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {
@@ -85,8 +85,10 @@ class SparseCholesky {
     if (ok_) {
       const Matrix& l = factor();
       ok_ = rows_.build(int(l.cols()), l.outerIndexPtr(), l.innerIndexPtr(), l.valuePtr());
+#ifdef _OPENMP  // threads_ > 1 needs OpenMP (set_threads)
       if (ok_ && threads_ > 1)
         rows_.plan_threads(threads_, int(l.cols()), l.outerIndexPtr(), l.innerIndexPtr());
+#endif
     }
     return ok_;
   }
@@ -113,10 +115,14 @@ class SparseCholesky {
 
   /// @brief w = (P Q P^T)^-1 w for a #rows by 3 row-major array in the factor's order
   /// (w[3 r + c], r = permutation()[i] for Q's row i). No allocation, no permutation.
-  void solve_in_place(Scalar* w) const { substitute(w, nullptr); }
-  /// @brief w = (P Q P^T)^-1 rhs, the right-hand side assembled row by row inside the forward
-  /// substitution (detail::RightHandSide, in the factor's order); w's rows are written, not read.
-  void solve_in_place(Scalar* w, const detail::RightHandSide<Scalar>& rhs) const {
+  void solve_in_place(Scalar* w) const {
+    substitute(w, static_cast<const detail::RightHandSideInPlace*>(nullptr));
+  }
+  /// @brief w = (P Q P^T)^-1 rhs, the right-hand side read from a row source row by row inside
+  /// the forward substitution (see detail::is_row_source; rows in the factor's order); w's rows
+  /// are written, not read.
+  template <class Rows>
+  void solve_in_place(Scalar* w, const Rows& rhs) const {
     substitute(w, &rhs);
   }
 
@@ -137,10 +143,12 @@ class SparseCholesky {
                           " needs OpenMP; compile with -fopenmp (link OpenMP::OpenMP_CXX)"));
 #endif
     threads_ = threads;
+#ifdef _OPENMP  // without OpenMP, threads is 1 here: nothing to plan
     if (ok_) {
       const Matrix& l = factor();
       rows_.plan_threads(threads_, int(l.cols()), l.outerIndexPtr(), l.innerIndexPtr());
     }
+#endif
   }
   /// @brief Threads the substitutions use (see set_threads()).
   [[nodiscard]] int threads() const { return threads_; }
@@ -180,7 +188,8 @@ class SparseCholesky {
 
  private:
   // The two solve_in_place()s: on threads_ threads (the schedule is planned only for those).
-  void substitute(Scalar* w, const detail::RightHandSide<Scalar>* rhs) const {
+  template <class Rows>
+  void substitute(Scalar* w, const Rows* rhs) const {
     if (threads_ > 1)
       lower().solve_parallel(w, rhs);
     else

@@ -20,8 +20,9 @@ struct Sparse {};
 ///
 /// Each specialisation provides
 /// - `Matrix`: the matrix type;
-/// - `Cholesky`: a factorisation with `bool compute(const Matrix&)`, `solve(b, x)` for #rows by 3
-///   right-hand sides without allocation, and `factor_nonzeros()`;
+/// - `Cholesky`: a factorisation of Q with the members storage/cholesky_concept.hpp lists
+///   (compute, permutation, solve_in_place, factor_nonzeros), and `solve(b, x)` for #rows by 3
+///   right-hand sides without allocation;
 /// - `static Matrix from_triplets(rows, cols, triplets)`: duplicates are summed.
 template <class Storage, class Scalar>
 struct storage_traits;

@@ -16,7 +16,7 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
 #include "massspring/storage/storage.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

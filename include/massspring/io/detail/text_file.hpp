@@ -11,7 +11,7 @@
 #include <system_error>
 
 #include "massspring/error.hpp"
-#include "massspring/system/detail/validate.hpp"
+#include "massspring/detail/validate.hpp"
 
 namespace massspring::io::detail {
 

@@ -7,18 +7,52 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <type_traits>
 
 #include "massspring/error.hpp"
 
 namespace massspring::detail {
 
-/// @brief Builds a message from streamable parts: `message("point ", 3, ": mass ", m)`.
+/// @brief Appends a number as `std::ostream` writes it at precision 17 (17 significant digits).
+/// One function, not a template: every message shares it.
+inline void append_number(std::string& out, double x) {
+  std::ostringstream text;
+  text.precision(17);
+  text << x;
+  out += text.str();
+}
+
+/// @brief Appends one part of a message: text as it is, a character, a number (integers exactly,
+/// floating point as append_number), anything else as its `operator<<` writes it.
+template <class T>
+void append_part(std::string& out, const T& part) {
+  if constexpr (std::is_convertible_v<const T&, std::string_view>) {
+    out += std::string_view(part);
+  } else if constexpr (std::is_same_v<T, char> || std::is_same_v<T, signed char> ||
+                       std::is_same_v<T, unsigned char>) {
+    out += char(part);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    out += part ? '1' : '0';
+  } else if constexpr (std::is_integral_v<T>) {
+    out += std::to_string(part);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    append_number(out, double(part));
+  } else {
+    std::ostringstream text;
+    text.precision(17);
+    text << part;
+    out += text.str();
+  }
+}
+
+/// @brief Builds a message from streamable parts: `message("point ", 3, ": mass ", m)`, numbers at
+/// 17 significant digits.
 template <class... Parts>
 std::string message(const Parts&... parts) {
-  std::ostringstream out;
-  out.precision(17);
-  (out << ... << parts);
-  return out.str();
+  std::string out;
+  (append_part(out, parts), ...);
+  return out;
 }
 
 /// @brief "(x, y, z)" of a row of three values, for messages.

@@ -18,7 +18,7 @@
 
 /// Fully unrolls the loop that follows (a fixed count over the lanes of a few springs), so that
 /// its arrays of registers stay in registers at -O2 too, where GCC 12 would keep the loop and put
-/// the arrays on the stack (the AVX2 spring pass took 1.7x its -O3 time that way).
+/// the arrays on the stack.
 #if defined(__clang__)
 #define MASSSPRING_UNROLL _Pragma("unroll")
 #elif defined(__GNUC__)
@@ -33,9 +33,13 @@
 /// The same for a lambda (after its parameter list): GCC 12 at -O2 calls the spring pass's
 /// per-pair lambda instead of inlining it, with its arrays in memory.
 #define MASSSPRING_LAMBDA_ALWAYS_INLINE __attribute__((always_inline))
+/// A function the compiler must not inline: a hot loop called once per iteration from several
+/// places, compiled once instead of at each (the call costs nothing next to the loop).
+#define MASSSPRING_NOINLINE __attribute__((noinline))
 #else
 #define MASSSPRING_ALWAYS_INLINE inline
 #define MASSSPRING_LAMBDA_ALWAYS_INLINE
+#define MASSSPRING_NOINLINE
 #endif
 
 namespace massspring::detail {

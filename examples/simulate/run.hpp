@@ -1,0 +1,493 @@
+#pragma once
+// massspring-simulate's run: resolves what the scene and the options ask for, checks every output
+// before the first step, steps, writes frames, the CSV and the saved state.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <massspring/io.hpp>
+#include <massspring/io/state_scene.hpp>
+#include <massspring/massspring.hpp>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "simulate/outputs.hpp"
+
+namespace simulate {
+
+constexpr int kExitBadInput = 1;  // invalid input or options; an output that cannot be written
+constexpr int kExitDiverged = 2;  // a step diverged; the last good state is kept
+
+inline const char* const kIntegrators[] = {"forward-euler", "symplectic-euler", "backward-euler",
+                                           "linearized-backward-euler", "fast-mass-spring"};
+
+// The signal (SIGINT or SIGTERM) received since the run started, or 0; the step loop stops after
+// the step in progress and the program exits 128 + the signal.
+inline volatile std::sig_atomic_t g_signal = 0;  // NOLINT: written by a signal handler
+
+inline void on_signal(int signal) { g_signal = signal; }
+
+inline void install_interrupt_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  // writes in progress continue; a second signal ends the program at once (the files already
+  // renamed into place are whole; a .tmp file may be left, and the next run names it)
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+struct Config {
+  std::string scene;     // a .json or .xml scene file, or empty
+  std::string generate;  // cloth[:CxR], chain[:N], net[:CxR], or empty
+  int frames = 300;
+  bool frames_given = false;
+  double dt = 1.0 / 30;
+  bool dt_given = false;
+  std::string integrator = "fast-mass-spring";
+  bool integrator_given = false;
+  double shrink = 0;  // rest lengths l0(t) = l0(0) exp(-shrink t)
+  // FastMassSpringOptions
+  int iterations = 50;
+  double tolerance = 0;
+  std::string pins = "exact";
+  double penalty_weight = 1e10;
+  std::string acceleration = "none";
+  double chebyshev_rho = 0;
+  bool rho_given = false;
+  double chebyshev_gamma = 1;
+  int chebyshev_delay = 2;
+  int chebyshev_estimate = 100;
+  int anderson_window = 5;
+  int threads = 1;
+  std::string ordering = "auto";
+  std::string initial_guess = "current";
+  // BackwardEulerOptions
+  int newton_iterations = 20;
+  double newton_tolerance = 1e-10;
+  std::string line_search = "on";
+  // options given that belong to one integrator or acceleration
+  std::vector<std::string> given_fast_mass_spring, given_chebyshev, given_anderson,
+      given_backward_euler;
+  std::vector<double> force{0, 0, 0};
+  std::vector<double> gravity{0, -9.8, 0};
+  bool force_given = false, gravity_given = false;
+  std::string storage = "sparse";
+  std::string precision = "double";
+  std::string out;         // folder for frame_NNNNN.obj
+  std::string csv;         // trajectory file
+  std::string save_state;  // state file
+  int save_every = 0;
+  bool overwrite = false;
+  int every = 1;
+  bool quiet = false;
+  double guard_growth = 100;  // DivergenceGuard growth; 0: no energy check
+};
+
+// What a run needs besides the options.
+template <class System>
+struct Setup {
+  System system;
+  std::vector<std::vector<int>> faces;  // drawn in the OBJ frames
+  massspring::Edges edges;              // drawn in the OBJ frames (XML: every edge)
+  std::vector<fs::path> inputs;         // every file the run reads
+  std::optional<massspring::io::FosssimScene> fosssim;
+  bool state = false;       // a state saved by --save-state
+  nlohmann::json run_data;  // its "run" object
+  std::string name;         // the scene file or "--generate SPEC"
+};
+
+// FOSSSim's integrator names -> ours.
+inline std::string our_integrator(massspring::io::FosssimIntegrator i) {
+  using massspring::io::FosssimIntegrator;
+  switch (i) {
+    case FosssimIntegrator::ExplicitEuler:
+      return "forward-euler";
+    case FosssimIntegrator::SymplecticEuler:
+      return "symplectic-euler";
+    case FosssimIntegrator::LinearizedImplicitEuler:
+      return "linearized-backward-euler";
+    case FosssimIntegrator::ImplicitEuler:
+      return "backward-euler";
+  }
+  return "symplectic-euler";
+}
+
+inline double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const double at = p * double(v.size() - 1);
+  const auto lo = std::size_t(at);
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (at - double(lo)) * (v[hi] - v[lo]);
+}
+
+// What the run resolved from the scene and the options.
+struct Plan {
+  double dt = 0;
+  int steps = 0;
+  long long first_frame = 0;  // a saved state's frame; 0 otherwise
+  std::string integrator;
+  std::optional<double> saved_rho;               // a saved state's Chebyshev rho
+  std::optional<std::vector<double>> rest_at_0;  // --shrink: rest lengths at frame 0
+};
+
+// A saved state's "run" entry, type-checked.
+inline const nlohmann::json* run_entry(const Config& c, const nlohmann::json& run, const char* key,
+                                       bool (nlohmann::json::*is)() const noexcept) {
+  if (!run.is_object()) return nullptr;
+  const auto it = run.find(key);
+  if (it == run.end()) return nullptr;
+  if (!((*it).*is)())
+    throw Error(c.scene + ": key \"run\": \"" + key + "\" has the wrong type: " + it->dump());
+  return &*it;
+}
+
+template <class System>
+Plan resolve(const Config& c, const Setup<System>& s) {
+  Plan p;
+  const bool xml = s.fosssim.has_value();
+  if ((c.gravity_given || c.force_given) && (xml || s.state))
+    throw Error(std::string(c.gravity_given ? "--gravity" : "--force") + ": " + s.name +
+                " carries its own force terms (" + (xml ? "an XML scene" : "a saved state") +
+                "); --gravity and --force apply to JSON+OBJ and generated scenes");
+  using J = nlohmann::json;
+  const J& run = s.run_data;
+  if (const J* f = run_entry(c, run, "frame", &J::is_number_unsigned))
+    p.first_frame = f->get<long long>();
+  const J* saved_dt = run_entry(c, run, "dt", &J::is_number);
+  const J* saved_integrator = run_entry(c, run, "integrator", &J::is_string);
+  if (const J* r = run_entry(c, run, "chebyshev_rho", &J::is_number))
+    p.saved_rho = r->get<double>();
+  p.dt = c.dt_given ? c.dt : xml ? s.fosssim->dt : saved_dt ? saved_dt->get<double>() : c.dt;
+  if (!(std::isfinite(p.dt) && p.dt > 0))
+    throw Error(s.name + ": key \"run\": \"dt\" must be > 0, got " + std::to_string(p.dt));
+  p.integrator = c.integrator_given ? c.integrator
+                 : xml              ? our_integrator(s.fosssim->integrator)
+                 : saved_integrator ? saved_integrator->get<std::string>()
+                                    : "fast-mass-spring";
+  if (std::find(std::begin(kIntegrators), std::end(kIntegrators), p.integrator) ==
+      std::end(kIntegrators))
+    throw Error(s.name + ": key \"run\": unknown integrator \"" + p.integrator + "\"");
+  long long steps = c.frames;
+  if (!c.frames_given && xml) steps = s.fosssim->steps_for(p.dt);
+  if (steps > 100000000)
+    throw Error(s.name + ": " + std::to_string(steps) +
+                " steps (its duration / dt) is more than 10^8; give --frames or --dt");
+  if (p.first_frame + steps > 2000000000)
+    throw Error("--frames " + std::to_string(steps) + ": frame numbers would pass 2000000000 (" +
+                s.name + " starts at frame " + std::to_string(p.first_frame) + ")");
+  p.steps = int(steps);
+
+  auto refuse = [&](const std::vector<std::string>& given, const std::string& needs, bool applies) {
+    if (!given.empty() && !applies)
+      throw Error(given.front() + ": applies to " + needs + " only (this run: " + p.integrator +
+                  (p.integrator == "fast-mass-spring" ? ", --acceleration " + c.acceleration : "") +
+                  ")");
+  };
+  const bool fms = p.integrator == "fast-mass-spring";
+  refuse(c.given_fast_mass_spring, "--integrator fast-mass-spring", fms);
+  refuse(c.given_chebyshev, "--acceleration chebyshev", fms && c.acceleration == "chebyshev");
+  refuse(c.given_anderson, "--acceleration anderson", fms && c.acceleration == "anderson");
+  refuse(c.given_backward_euler, "--integrator backward-euler", p.integrator == "backward-euler");
+
+  if (c.shrink > 0) {
+    const auto m = std::size_t(s.system.num_springs());
+    if (!s.state) {
+      p.rest_at_0.emplace(m);
+      for (std::size_t e = 0; e < m; ++e)
+        (*p.rest_at_0)[e] = double(s.system.rest_lengths()(Eigen::Index(e)));
+    } else {
+      const J* saved_shrink = run_entry(c, run, "shrink", &J::is_number);
+      const J* rest = run_entry(c, run, "rest_lengths_at_frame_0", &J::is_array);
+      if (!saved_shrink || saved_shrink->get<double>() != c.shrink || !rest || rest->size() != m)
+        throw Error("--shrink: " + s.name +
+                    " was not saved by a run with the same --shrink, so the rest lengths at "
+                    "frame 0 are not known");
+      p.rest_at_0.emplace();
+      for (const J& r : *rest) {
+        if (!r.is_number()) throw Error(s.name + ": key \"run\": a rest length is not a number");
+        p.rest_at_0->push_back(r.get<double>());
+      }
+    }
+  }
+  return p;
+}
+
+// The solver, configured from the options.
+template <class System>
+void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System>& solver) {
+  using Scalar = typename System::Scalar;
+  auto& o = solver.options;
+  o.iterations = c.iterations;
+  o.tolerance = Scalar(c.tolerance);
+  o.pins = c.pins == "penalty" ? massspring::PinMode::Penalty : massspring::PinMode::Exact;
+  o.penalty_weight = Scalar(c.penalty_weight);
+  o.acceleration = c.acceleration == "chebyshev"  ? massspring::Acceleration::Chebyshev
+                   : c.acceleration == "anderson" ? massspring::Acceleration::Anderson
+                                                  : massspring::Acceleration::None;
+  // A resumed run uses the rho its first run estimated: estimating again, from another state,
+  // would give another rho and another trajectory.
+  o.chebyshev_rho = Scalar(!c.rho_given && p.saved_rho ? *p.saved_rho : c.chebyshev_rho);
+  o.chebyshev_gamma = Scalar(c.chebyshev_gamma);
+  o.chebyshev_delay = c.chebyshev_delay;
+  o.chebyshev_estimate_iterations = c.chebyshev_estimate;
+  o.anderson_window = c.anderson_window;
+  o.threads = c.threads;
+  o.ordering = c.ordering == "solver"              ? massspring::FillOrdering::Solver
+               : c.ordering == "nested-dissection" ? massspring::FillOrdering::NestedDissection
+                                                   : massspring::FillOrdering::Auto;
+  o.initial_guess = c.initial_guess == "inertial" ? massspring::InitialGuess::Inertial
+                                                  : massspring::InitialGuess::Current;
+  if (std::is_same_v<Scalar, float> && o.pins == massspring::PinMode::Penalty)
+    throw Error(
+        massspring::detail::message("--pins penalty with --precision float: w = ", c.penalty_weight,
+                                    " swamps the rest of Q in float; use --pins exact"));
+}
+
+template <class System>
+void configure(const Config& c, const Plan& p, massspring::BackwardEuler<System>& solver) {
+  solver.options.mode = p.integrator == "backward-euler"
+                            ? massspring::BackwardEulerMode::Newton
+                            : massspring::BackwardEulerMode::Linearized;
+  solver.options.max_iterations = c.newton_iterations;
+  solver.options.tolerance = typename System::Scalar(c.newton_tolerance);
+  solver.options.line_search = c.line_search == "on";
+}
+
+template <class System, class Solver>
+void configure(const Config&, const Plan&, Solver&) {}
+
+// The step loop shared by every integrator.
+template <class System, class Solver>
+int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::string what) {
+  using Scalar = typename System::Scalar;
+  System& system = s.system;
+  configure<System>(c, p, solver);
+  if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>) {
+    what += " (" + c.pins + " pins, " + std::to_string(c.iterations) + " iterations";
+    if (c.acceleration != "none") what += ", " + c.acceleration;
+    what += ")";
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  solver.precompute(system, Scalar(p.dt));
+  const double precompute_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+  // Every check has passed: from here on files are written.
+  const fs::path out = c.out;
+  if (!c.out.empty()) {
+    if (c.overwrite) clear_frames(out);
+    fs::create_directories(out);
+  }
+  std::optional<TrajectoryCsv> csv;
+  if (!c.csv.empty()) csv.emplace(c.csv);
+  auto where = [&] {
+    return csv ? " (the trajectory so far is in " + csv->tmp().string() + ")" : std::string();
+  };
+
+  if (!c.quiet) {
+    std::printf(
+        "%s: %d points, %d springs, %d pinned, %d force terms; %s, dt %g s, %d steps (%g s)%s; "
+        "%s, %s; precompute %.2f ms\n",
+        s.name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
+        system.forces().size(), what.c_str(), p.dt, p.steps, p.dt * p.steps,
+        p.first_frame ? (" from frame " + std::to_string(p.first_frame)).c_str() : "",
+        c.storage.c_str(), c.precision.c_str(), precompute_ms);
+    std::fflush(stdout);  // seen before the run, also through a pipe
+  }
+
+  std::vector<double> rest_at_0;
+  if (p.rest_at_0) rest_at_0 = *p.rest_at_0;
+  massspring::Vector<Scalar> rest(system.num_springs());
+
+  auto save = [&](long long frame) {
+    if (c.save_state.empty()) return;
+    massspring::io::StateSceneExtras extras;
+    extras.faces = s.faces;
+    extras.edges = s.edges;
+    nlohmann::json run = {{"frame", frame},
+                          {"time", double(frame) * p.dt},
+                          {"dt", p.dt},
+                          {"integrator", p.integrator},
+                          {"scene", s.name}};
+    if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
+      if (c.acceleration == "chebyshev" && solver.chebyshev_rho() > 0)
+        run["chebyshev_rho"] = double(solver.chebyshev_rho());
+    if (p.rest_at_0) {
+      run["shrink"] = c.shrink;
+      run["rest_lengths_at_frame_0"] = rest_at_0;
+    }
+    extras.run = std::move(run);
+    massspring::io::write_scene(system, c.save_state, extras);
+  };
+
+  long long last_written = -1;
+  const long long last_frame = p.first_frame + p.steps;
+  auto write_frame = [&](long long frame, bool always = false) {
+    if (frame == last_written) return;
+    if (frame % c.every != 0 && frame != last_frame && !always) return;
+    last_written = frame;
+    if (!c.out.empty()) {
+      char file[32];
+      std::snprintf(file, sizeof file, "frame_%05lld.obj", frame);
+      massspring::io::write_obj(out / file, system.positions(), s.faces, s.edges);
+    }
+    if (csv) csv->write(frame, system);
+  };
+
+  std::vector<double> ms;
+  ms.reserve(std::size_t(std::min(p.steps, 1 << 20)));
+  long long iterations = 0, diverged_at = -1, interrupted_at = -1, frame = p.first_frame;
+  bool blew_up = false;
+  int signal = 0;
+  std::optional<massspring::DivergenceGuard<System>> guard;
+  try {
+    write_frame(frame, true);  // the first frame, whatever --every says
+    // The energy check (off with --guard-growth 0): a step whose total energy passes
+    // E(0) + growth x scale is undone and stops the run, like a non-finite one.
+    if (c.guard_growth > 0) guard.emplace(system, massspring::DivergenceOptions{c.guard_growth});
+    for (int step = 1; step <= p.steps; ++step) {
+      if (g_signal) {  // SIGINT or SIGTERM since the last step: keep its frame, stop
+        signal = g_signal;
+        interrupted_at = frame;
+        write_frame(frame, true);
+        break;
+      }
+      if (p.rest_at_0) {  // free: rest lengths do not change any matrix
+        const double factor = std::exp(-c.shrink * p.dt * double(frame));
+        for (Eigen::Index e = 0; e < rest.size(); ++e)
+          rest(e) = Scalar(rest_at_0[std::size_t(e)]) * Scalar(factor);
+        system.set_rest_lengths(rest);
+      }
+      const auto start = std::chrono::steady_clock::now();
+      const massspring::StepReport report =
+          guard ? guard->step(solver, system) : solver.step(system);
+      ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
+      iterations += report.iterations;
+      if (!report.ok()) {
+        diverged_at = frame + 1;
+        blew_up = report.blew_up;
+        break;
+      }
+      ++frame;
+      write_frame(frame);
+      if (c.save_every > 0 && frame % c.save_every == 0) save(frame);
+    }
+  } catch (const std::exception& e) {
+    throw Error(std::string(e.what()) + where());
+  }
+
+  // The end: the state, then the CSV; a failure of either is reported after the other is done.
+  std::vector<std::string> failures;
+  try {
+    save(frame);
+  } catch (const std::exception& e) {
+    failures.push_back(e.what());
+  }
+  try {
+    if (csv) csv->close();
+  } catch (const std::exception& e) {
+    failures.push_back(e.what());
+  }
+
+  const int done = int(ms.size()) - (diverged_at > 0 ? 1 : 0);
+  double mean = 0;
+  for (double x : ms) mean += x / double(ms.size());
+  if (!c.quiet)
+    std::printf(
+        "%d steps, %.2f iterations per step: median %.3f ms per step "
+        "(mean %.3f, p10 %.3f, p90 %.3f, max %.3f)\n",
+        done, ms.empty() ? 0.0 : double(iterations) / double(ms.size()), percentile(ms, 0.5), mean,
+        percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
+  else
+    std::printf("%.3f\n", percentile(ms, 0.5));
+  std::fflush(stdout);
+  for (const std::string& f : failures)
+    std::fprintf(stderr, "massspring-simulate: %s\n", f.c_str());
+
+  const std::string range = std::to_string(p.first_frame) + "..";
+  if (diverged_at > 0 && blew_up) {
+    std::fprintf(stderr,
+                 "massspring-simulate: step %lld: the total energy passed the divergence limit "
+                 "(%.6g J: the initial energy + %g x the scale %.6g J); stopped with the last good "
+                 "state (steps %s%lld written)\n",
+                 diverged_at, double(guard->limit()), c.guard_growth, double(guard->scale()),
+                 range.c_str(), diverged_at - 1);
+    return kExitDiverged;
+  }
+  if (diverged_at > 0) {
+    std::fprintf(stderr,
+                 "massspring-simulate: step %lld: the step produced a non-finite state; stopped "
+                 "with the last finite state (steps %s%lld written)\n",
+                 diverged_at, range.c_str(), diverged_at - 1);
+    return kExitDiverged;
+  }
+  if (interrupted_at >= 0) {
+    std::fprintf(stderr,
+                 "massspring-simulate: interrupted at frame %lld; frames %s%lld written%s\n",
+                 interrupted_at, range.c_str(), interrupted_at,
+                 c.every > 1 ? " (every --every-th and the last)" : "");
+    return 128 + signal;
+  }
+  return failures.empty() ? 0 : kExitBadInput;
+}
+
+template <class System>
+int run(const Config& c, Setup<System>& s) {
+  using Scalar = typename System::Scalar;
+  const Plan p = resolve(c, s);
+
+  // Outputs: checked before anything is written or a step is taken.
+  check_output_file("--csv", c.csv, s.inputs, {c.save_state}, c.overwrite);
+  check_output_file("--save-state", c.save_state, s.inputs, {c.csv}, c.overwrite);
+  check_output_folder(c.out, s.inputs, {c.csv, c.save_state}, c.overwrite);
+
+  System& system = s.system;
+  // JSON and generated scenes get --gravity and --force as force terms (an XML scene or a saved
+  // state has its own). Every integrator reads them from the system; FastMassSpring treats both
+  // exactly, and the divergence guard sees their energy.
+  if (!s.fosssim && !s.state) {
+    massspring::Vector3<Scalar> gravity, force;
+    for (int k = 0; k < 3; ++k) {
+      gravity(k) = Scalar(c.gravity[std::size_t(k)]);
+      force(k) = Scalar(c.force[std::size_t(k)]);
+    }
+    if (!gravity.isZero()) system.add_force(massspring::Gravity<Scalar>(gravity));
+    if (!force.isZero()) system.add_force(massspring::ConstantForce<Scalar>(force));
+  }
+  if (!c.save_state.empty())
+    for (int k = 0; k < system.forces().size(); ++k) {
+      const std::string term = system.forces()[k].name;
+      if (term != "gravity" && term != "constant force" && term != "linear drag")
+        throw Error("--save-state " + c.save_state + ": " + s.name + " has a " + term +
+                    " term, which a state file cannot hold (it holds gravity, constant force and "
+                    "linear drag)");
+    }
+
+  if (p.integrator == "fast-mass-spring") {
+    massspring::FastMassSpring<System> solver;
+    return loop(c, s, p, solver, p.integrator);
+  }
+  if (p.integrator == "forward-euler") {
+    massspring::ForwardEuler<System> solver;
+    return loop(c, s, p, solver, p.integrator);
+  }
+  if (p.integrator == "symplectic-euler") {
+    massspring::SymplecticEuler<System> solver;
+    return loop(c, s, p, solver, p.integrator);
+  }
+  massspring::BackwardEuler<System> solver;
+  return loop(c, s, p, solver, p.integrator);
+}
+
+}  // namespace simulate

@@ -1,0 +1,479 @@
+#pragma once
+/// @file
+/// @brief FastMassSpring: the local-global solver of Liu et al. 2013, "Fast Simulation of
+/// Mass-Spring Systems", for one implicit-Euler step per call, with optional Chebyshev (Wang 2015)
+/// or Anderson (Peng et al. 2018) acceleration. Its pieces are in this folder: options.hpp,
+/// reduced_system.hpp (Q and the numbering of its unknowns), spring_pass.hpp and share_pass.hpp
+/// (the local step), guarded_loop.hpp, chebyshev.hpp and anderson.hpp (the iterations).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "massspring/detail/validate.hpp"
+#include "massspring/error.hpp"
+#include "massspring/forces/springs.hpp"
+#include "massspring/integrators/local_global/anderson.hpp"
+#include "massspring/integrators/local_global/chebyshev.hpp"
+#include "massspring/integrators/local_global/guarded_loop.hpp"
+#include "massspring/integrators/local_global/inertial_term.hpp"
+#include "massspring/integrators/local_global/options.hpp"
+#include "massspring/integrators/local_global/reduced_system.hpp"
+#include "massspring/integrators/local_global/share_pass.hpp"
+#include "massspring/integrators/local_global/spring_pass.hpp"
+#include "massspring/integrators/step_report.hpp"
+#include "massspring/storage/cholesky_concept.hpp"
+#include "massspring/storage/nested_dissection.hpp"
+#include "massspring/system/mass_spring_system.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring {
+
+/// @brief Local-global ("fast mass-spring") integrator of Liu et al. 2013.
+///
+/// Each step minimises, over the new positions X,
+///   E(X) = sum_e k_e/2 (|x_i - x_j| - r_e)^2 + 1/(2 dt^2) tr((X - Y)^T M (X - Y)) - tr(X^T F)
+/// with Y = X^t + dt V^t and F the external forces, which is one step of implicit Euler. Each
+/// iteration alternates a local step (d_e = r_e (x_i - x_j) / |x_i - x_j|, every spring) and a
+/// global step (solve Q X = A^T K D + M Y / dt^2 + F with Q = A^T K A + M / dt^2); it never
+/// increases E. Afterwards V = (X - X^t) / dt.
+///
+/// Force terms of the system (system.add_force): a term that declares a uniform linear damping
+/// (F = -beta v, dF/dv = -beta I constant: `LinearDrag`, see ForceConcept::linear_damping) folds
+/// into Q exactly (the term beta/(2 dt) |X - X^t|^2 adds beta/dt to Q's diagonal and beta/dt X^t
+/// to the right-hand side); every other term, and spring damping, is evaluated once per step at
+/// (X^t, V^t) and added to F. That is exact for constant forces (Gravity, ConstantForce) and
+/// explicit, first order, for the others (GravitationalAttraction, SpringDamping, user terms):
+/// evaluating them at each iterate instead would move the energy each iteration descends, and
+/// lose the monotone descent and the tolerance test. For implicit treatment of such terms use
+/// BackwardEuler.
+///
+/// precompute() factorises Q once (n x n, three right-hand sides). step() re-factorises only when
+/// the system's revision(), the time step or the pin options changed; it allocates nothing
+/// otherwise, and never throws for a numerical failure: a failed re-factorisation or a result that
+/// is not finite is reported in the StepReport, the system keeping its state. A zero-length
+/// spring keeps the direction it had at the end of the previous step.
+///
+/// @tparam System a MassSpringSystem<Scalar, Storage>
+/// @tparam Cholesky_ the factorisation of Q: by default the Storage's (SparseCholesky or
+/// DenseCholesky); any type with the members storage/cholesky_concept.hpp requires works (e.g.
+/// CholmodCholesky from massspring/storage/cholmod.hpp).
+template <class System, class Cholesky_ = typename System::Traits::Cholesky>
+class FastMassSpring {
+ public:
+  using Scalar = typename System::Scalar;
+  using Storage = typename System::Storage;
+  using Traits = typename System::Traits;
+  using Matrix = typename Traits::Matrix;
+  using Cholesky = Cholesky_;
+  using Triplet = typename Traits::Triplet;
+  using PointsType = Points<Scalar>;
+  using Options = FastMassSpringOptions<Scalar>;
+  static_assert(require_cholesky<Cholesky, Matrix, Scalar>());
+
+  /// @brief The options; read at every step.
+  Options options;
+
+  FastMassSpring() = default;
+  explicit FastMassSpring(const Options& opts) : options(opts) {}
+
+  /// @brief Builds and factorises Q for this system and time step dt [s] (finite, > 0).
+  /// Allocates every buffer step() needs. Throws massspring::Error on bad input or when Q cannot
+  /// be factorised.
+  void precompute(const System& system, Scalar dt) {
+    if (!(std::isfinite(dt) && dt > 0))
+      throw Error(detail::message("FastMassSpring: dt must be finite and > 0, got ", dt));
+    check_options();
+    dt_ = dt;
+    if (!build(system)) throw Error(factorisation_message());
+  }
+
+  /// @brief Advances the system by one time step dt. Returns what happened: when Q had to be
+  /// factorised again and could not be (report.factorization_failed), or when the result is not
+  /// finite (report.finite false), the system keeps its previous state. Throws massspring::Error
+  /// only for invalid options, or when precompute() was not called.
+  StepReport step(System& system) {
+    if (!(dt_ > 0)) throw Error("FastMassSpring: step() before precompute()");
+    check_options();
+    StepReport report;
+    if (!factored_ || system.revision() != revision_ || system.num_points() != reduced_.n ||
+        options.pins != pins_ || (pins_ == PinMode::Penalty && options.penalty_weight != weight_) ||
+        options.ordering != ordering_) {
+      report.refactorized = true;
+      if (!build(system)) {
+        report.factorization_failed = true;
+        return report;
+      }
+    }
+    apply_threads();
+    prepare(system);
+    Scalar* result = nullptr;
+    Iteration it{this};
+    const int cap = options.iterations;
+    const double tolerance = double(options.tolerance);
+    switch (options.acceleration) {
+      case Acceleration::None:
+        result = run_plain(report);
+        break;
+      case Acceleration::Chebyshev: {
+        if (!(options.chebyshev_rho > 0) && !(rho_estimate_ > 0)) {
+          estimate_rho();
+          prepare(system);
+        }
+        local_global::Chebyshev<Scalar> chebyshev(
+            {buffers_[0].data(), buffers_[1].data(), buffers_[2].data(), buffers_[3].data()},
+            reduced_.nr, reduced_.nx, double(chebyshev_rho()), double(options.chebyshev_gamma),
+            options.chebyshev_delay);
+        result = local_global::guarded_loop(it, chebyshev, cap, tolerance, report, rejections_);
+        break;
+      }
+      case Acceleration::Anderson:
+        anderson_.start({buffers_[0].data(), buffers_[1].data(), buffers_[2].data(),
+                         buffers_[3].data(), buffers_[4].data()},
+                        reduced_.nr, options.anderson_window);
+        result = local_global::guarded_loop(it, anderson_, cap, tolerance, report, rejections_);
+        break;
+    }
+    return commit(system, result, report);
+  }
+
+  /// @brief The time step of the last precompute() [s].
+  [[nodiscard]] Scalar dt() const { return dt_; }
+  /// @brief Q as factorised: over the free points with Exact pins (rows in free_points() order),
+  /// over every point with Penalty pins.
+  [[nodiscard]] const Matrix& system_matrix() const { return q_; }
+  /// @brief Points whose positions are unknowns of the global step, in the order of Q's rows.
+  [[nodiscard]] const std::vector<int>& free_points() const { return reduced_.free; }
+  /// @brief Stored entries of the Cholesky factor of Q.
+  [[nodiscard]] Eigen::Index factor_nonzeros() const { return llt_.factor_nonzeros(); }
+  /// @brief The factorisation of Q.
+  [[nodiscard]] const Cholesky& factorization() const { return llt_; }
+  /// @brief The rho Chebyshev uses: options.chebyshev_rho when > 0, else the solver's estimate
+  /// (0 until the first Chebyshev step after a factorisation has estimated it).
+  [[nodiscard]] Scalar chebyshev_rho() const {
+    return options.chebyshev_rho > 0 ? options.chebyshev_rho : rho_estimate_;
+  }
+  /// @brief Accelerated iterates replaced by the plain step because the energy rose (Chebyshev
+  /// restarts, Anderson rejections), counted since construction.
+  [[nodiscard]] std::size_t rejections() const { return rejections_; }
+
+ private:
+  using Buffer = Vector<Scalar>;
+  static constexpr bool kDouble = std::is_same_v<Scalar, double>;
+
+  // What guarded_loop() calls.
+  struct Iteration {
+    FastMassSpring* solver;
+    double local(const Scalar* x, Scalar* w) { return solver->template local_step<true>(x, w); }
+    void global(Scalar* w) { solver->global_step(w); }
+    double energy(const Scalar* x) { return solver->energy_at(x); }
+  };
+
+  bool simd_allowed() const {
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+#endif
+    return options.simd && options.avx2;  // avx2: the deprecated name of simd
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+  }
+
+  void check_options() const {
+    massspring::check_options(options, cholesky_has_ordered_compute<Cholesky, Matrix>::value,
+                              cholesky_has_threads<Cholesky>::value);
+  }
+
+  std::string factorisation_message() const {
+    const bool exact = pins_ == PinMode::Exact;
+    return detail::message("FastMassSpring: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
+                           " is not numerically positive definite (dt = ", dt_,
+                           exact ? "" : detail::message(", penalty weight = ", weight_), ")");
+  }
+
+  // Factorises Q in the order options.ordering asks for (see FillOrdering).
+  bool factorise(const System& system) {
+    if constexpr (cholesky_has_ordered_compute<Cholesky, Matrix>::value) {
+      if (options.ordering != FillOrdering::Solver) {
+        const int nr = reduced_.nr;
+        Eigen::Matrix<double, Eigen::Dynamic, 3> xyz(nr, 3);
+        for (int r = 0; r < nr; ++r)
+          xyz.row(r) =
+              system.rest_positions().row(reduced_.free[std::size_t(r)]).template cast<double>();
+        const Graph graph = graph_of(q_);
+        std::size_t dissected = 0;  // nnz(L) in that order
+        std::vector<int> order = nested_dissection(xyz, graph, {}, &dissected);
+        if (options.ordering == FillOrdering::Auto) {
+          std::vector<int> own = Cholesky::ordering_of(q_);
+          if (cholesky_nonzeros(graph, own) <= dissected) order.swap(own);
+        }
+        return llt_.compute(q_, order);
+      }
+    }
+    (void)system;
+    return llt_.compute(q_);
+  }
+
+  // The solver's threads and the SIMD choice (substitutions, share pass) to the options'
+  // (SparseCholesky::set_threads checks for OpenMP).
+  void apply_threads() {
+    if constexpr (cholesky_has_threads<Cholesky>::value) {
+      if (llt_.threads() != options.threads) llt_.set_threads(options.threads);
+    }
+    if constexpr (cholesky_has_simd<Cholesky>::value) llt_.set_avx2(simd_allowed());
+    simd_ = kDouble && simd_allowed() && local_global::SharePass::available();
+    assembled_in_solve_ =
+        simd_ &&
+        cholesky_has_row_source_solve<Cholesky, Scalar, local_global::ShareRows<Scalar>>::value;
+  }
+
+  // ---- precompute -------------------------------------------------------------------------------
+
+  // Q, its factor, the packed springs and every buffer step() uses. The only place that
+  // allocates. False (the solver left to build again) when Q cannot be factorised.
+  bool build(const System& system) {
+    factored_ = false;
+    pins_ = options.pins;
+    weight_ = options.penalty_weight;
+    revision_ = system.revision();
+    rho_estimate_ = 0;
+    const bool exact = pins_ == PinMode::Exact;
+    const Scalar inv_dt2 = Scalar(1) / (dt_ * dt_);
+
+    // The system's force terms: a uniform linear damping folds into Q exactly (beta/(2 dt)
+    // |X - X^t|^2 adds beta/dt to the diagonal); every other term is evaluated once per step (see
+    // prepare()).
+    drag_ = 0;
+    other_terms_ = system.has_spring_damping();
+    for (const auto& term : system.forces()) {
+      if (term->linear_damping)
+        drag_ += term->linear_damping_coefficient();
+      else
+        other_terms_ = true;
+    }
+    q_ = reduced_.template assemble<Traits>(system, exact, inv_dt2, drag_ / dt_, weight_);
+    const int n = reduced_.n, nr = reduced_.nr;
+    term_force_.setZero(other_terms_ ? n : 0, 3);
+    apply_threads();
+    ordering_ = options.ordering;
+    if (!factorise(system)) return false;
+
+    reduced_.renumber(system, llt_.permutation(), exact);
+    const int nx = reduced_.nx;
+    springs_.build(system, reduced_.row, nx);
+    reduced_.couple(springs_);
+    inertia_.build(system, reduced_, inv_dt2, drag_ / dt_);
+
+    const Eigen::Index size = 3 * Eigen::Index(nx);
+    // One value more than the iterate's rows: the share pass loads the last row as four values.
+    for (Buffer& b : buffers_) b.setZero(size + 1);
+    if constexpr (kDouble) share_pass_.build(springs_, nx);
+    anderson_.reserve(nr,
+                      options.acceleration == Acceleration::Anderson ? options.anderson_window : 0);
+    factored_ = true;
+    return true;
+  }
+
+  // ---- per step ---------------------------------------------------------------------------------
+
+  // The step's constants (inertial prediction, the right-hand side's constant part, pin
+  // targets), the starting iterate (buffer 0) and the current rest lengths.
+  void prepare(const System& system) {
+    if (other_terms_) {
+      // Terms other than uniform damping (gravity, constant forces, attraction, spring damping,
+      // the user's) at the step's start (x^t, v^t): constant over the step, so each iteration
+      // still descends one fixed energy. Exact for constant forces; explicit (first order) for
+      // the others.
+      term_force_.setZero();
+      const auto context = system.force_context(system.positions(), system.velocities());
+      if (system.has_spring_damping()) SpringDamping<Scalar>{}.add_force(context, term_force_);
+      for (const auto& term : system.forces())
+        if (!term->linear_damping) term->add_force(context, term_force_);
+    }
+    inertia_.prepare(system, reduced_, dt_, drag_, pins_ == PinMode::Penalty ? weight_ : Scalar(0),
+                     options.external_force, options.gravity, other_terms_ ? &term_force_ : nullptr,
+                     options.initial_guess == InitialGuess::Inertial, buffers_[0].data());
+    if (pins_ == PinMode::Exact)
+      for (Buffer& b : buffers_) restore_pins(b.data());
+    springs_.set_rest_lengths(system.rest_lengths());
+  }
+
+  // Pinned rows (exact pins) back to their targets, after a solve or a scatter wrote into them.
+  void restore_pins(Scalar* x) const { inertia_.restore_pins(x, reduced_.nr); }
+
+  template <bool Energy, bool Write = true>
+  double start_rhs(const Scalar* x, Scalar* w) const {
+    return inertia_.template start<Energy, Write>(x, w, reduced_);
+  }
+
+  // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy. On the SIMD path
+  // with a factorisation that reads a row source, only the springs' shares are computed and w is
+  // left as it is: global_step() must follow before w is read.
+  template <bool Energy>
+  MASSSPRING_NOINLINE double local_step(const Scalar* x, Scalar* w) {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    if constexpr (kDouble) {
+      if (simd_) {
+        double energy = 0;
+        if constexpr (Energy) energy = start_rhs<true, false>(x, nullptr);
+        energy += share_pass_.template run<Energy>(x, springs_);
+        if (!assembled_in_solve_) {
+          const local_global::ShareRows<Scalar> rhs = share_pass_.rows(inertia_.rhs0.data());
+          for (int r = 0; r < reduced_.nr; ++r) rhs.row(r, w + 3 * r);
+        }
+        return energy;
+      }
+    }
+#endif
+    const double quadratic = start_rhs<Energy>(x, w);
+    return quadratic + springs_.template pass<true, Energy>(x, w, reduced_.nx);
+  }
+
+  // The global step in place: w = Q^-1 w on the free rows (w = Q^-1 (rhs0 + A^T K D) assembled
+  // from the shares, see local_step()); pinned rows restored.
+  MASSSPRING_NOINLINE void global_step(Scalar* w) {
+    if constexpr (kDouble &&
+                  cholesky_has_row_source_solve<Cholesky, Scalar,
+                                                local_global::ShareRows<Scalar>>::value) {
+      if (assembled_in_solve_) {
+        llt_.solve_in_place(w, share_pass_.rows(inertia_.rhs0.data()));
+        restore_pins(w);
+        return;
+      }
+    }
+    llt_.solve_in_place(w);
+    restore_pins(w);
+  }
+
+  // One whole iteration, w = G(x) = Q^-1 (rhs0 + A^T K D(x)), returning E(x) when Energy.
+  template <bool Energy>
+  double iteration(const Scalar* x, Scalar* w) {
+    const double energy = local_step<Energy>(x, w);
+    global_step(w);
+    return energy;
+  }
+
+  // E at x without touching any right-hand side (and recording the springs' directions).
+  MASSSPRING_NOINLINE double energy_at(const Scalar* x) {
+#ifdef MASSSPRING_HAVE_AVX2_PATH
+    if constexpr (kDouble)
+      if (simd_)
+        return start_rhs<true, false>(x, nullptr) +
+               share_pass_.template run<true, false>(x, springs_);
+#endif
+    return start_rhs<true, false>(x, nullptr) +
+           springs_.template pass<false, true>(x, nullptr, reduced_.nx);
+  }
+
+  // ---- the iterations ---------------------------------------------------------------------------
+
+  // Plain local-global. Energy only where it is reported or the tolerance needs it.
+  Scalar* run_plain(StepReport& report) {
+    Scalar* x = buffers_[0].data();
+    Scalar* w = buffers_[1].data();
+    const int cap = options.iterations;
+    const double tolerance = double(options.tolerance);
+    const bool track = options.tolerance > 0;
+    double e0 = 0, e_prev = 0;
+    for (int k = 0; k < cap; ++k) {
+      if (track || k == 0 || k == cap - 1) {
+        const double e = iteration<true>(x, w);
+        if (k == 0) e0 = e;
+        // The tolerance is judged at x: w (one more solve, already done) is dropped.
+        if (local_global::tolerance_met(report, tolerance, k, e0, e_prev, e)) break;
+        e_prev = e;
+      } else {
+        iteration<false>(x, w);
+      }
+      std::swap(x, w);
+      ++report.iterations;
+    }
+    // e_prev: the energy at the start of the last iteration (always evaluated).
+    const double e = energy_at(x);
+    report.energy = e;
+    if (!report.converged) report.relative_decrease = local_global::relative(e_prev - e, e0 - e);
+    return x;
+  }
+
+  // Trial plain iterations from the prepared start; rho from the ratio of update norms over the
+  // second half. Uses buffers 0 and 1 (prepare() must run again afterwards).
+  void estimate_rho() {
+    const int iterations = options.chebyshev_estimate_iterations;
+    const int half = iterations / 2;
+    Scalar* x = buffers_[0].data();
+    Scalar* w = buffers_[1].data();
+    const Eigen::Index size = 3 * Eigen::Index(reduced_.nr);
+    double norm_half = 0, norm_last = 0;
+    for (int k = 0; k < iterations; ++k) {
+      local_step<false>(x, w);
+      global_step(w);
+      if (k == half - 1 || k == iterations - 1) {
+        const double d = (Eigen::Map<const Buffer>(w, size) - Eigen::Map<const Buffer>(x, size))
+                             .template cast<double>()
+                             .norm();
+        (k == half - 1 ? norm_half : norm_last) = d;
+      }
+      std::swap(x, w);
+    }
+    const double rho = std::pow(norm_last / norm_half, 1.0 / double(iterations - half));
+    rho_estimate_ = std::isfinite(rho) && rho > 0 && rho < 1 ? Scalar(rho) : Scalar(0);
+  }
+
+  // Writes the result into the system when it is finite (positions and the velocities they imply).
+  StepReport commit(System& system, const Scalar* x, StepReport& report) {
+    auto& positions = system.positions();
+    const Scalar inv_dt = Scalar(1) / dt_;
+    const int nx = reduced_.nx;
+    for (int r = 0; r < nx; ++r) {
+      const int i = reduced_.point[std::size_t(r)];
+      for (int c = 0; c < 3; ++c) {
+        const Scalar value = x[3 * r + c];
+        if (!std::isfinite(value) || !std::isfinite((value - positions(i, c)) * inv_dt)) {
+          report.finite = false;
+          return report;
+        }
+      }
+    }
+    auto& velocities = system.velocities();
+    for (int r = 0; r < nx; ++r) {
+      const int i = reduced_.point[std::size_t(r)];
+      for (int c = 0; c < 3; ++c) {
+        const Scalar value = x[3 * r + c];
+        velocities(i, c) = (value - positions(i, c)) * inv_dt;
+        positions(i, c) = value;
+      }
+    }
+    return report;
+  }
+
+  Scalar dt_ = 0;
+  Scalar weight_ = 0;
+  Scalar rho_estimate_ = 0;
+  PinMode pins_ = PinMode::Exact;
+  FillOrdering ordering_ = FillOrdering::Auto;
+  std::uint64_t revision_ = 0;
+  bool factored_ = false;  // the last build() factorised Q
+  std::size_t rejections_ = 0;
+  local_global::ReducedSystem<Scalar> reduced_;
+  local_global::PackedSprings<Scalar> springs_;
+  local_global::SharePass share_pass_;  // double only
+  Matrix q_;
+  Cholesky llt_;
+  std::array<Buffer, 5> buffers_;
+  local_global::InertialTerm<Scalar> inertia_;
+  bool simd_ = false;                // the share pass (double, options.simd, a CPU with AVX2 + FMA)
+  bool assembled_in_solve_ = false;  // simd_, and llt_ reads the right-hand side from a row source
+  Scalar drag_ = 0;                  // sum of the terms' uniform linear damping [N s/m]
+  bool other_terms_ = false;         // the system has force terms other than that
+  Points<Scalar> term_force_;        // their force at the step's start
+  local_global::Anderson<Scalar> anderson_;
+};
+
+}  // namespace massspring

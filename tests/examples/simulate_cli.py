@@ -1,0 +1,415 @@
+#!/usr/bin/env python3
+"""massspring-simulate's refusals, outputs and resume, on the real binary: run by ctest
+(tests/CMakeLists.txt) as
+
+    simulate_cli.py MASSSPRING_SIMULATE SOURCE_DIR WORK_DIR CASE
+
+CASE is one of
+  refusals   every bad input of docs/errors.md's "massspring-simulate" table: exit 1, the exact
+             message (one line, prefixed "massspring-simulate: "), nothing on stdout (no run
+             started), and the work folder byte for byte as it was (nothing written or removed);
+             `--table` prints the table instead of checking it
+  help       --help exits 0 and shows a default for every option that takes a value
+  overwrite  --overwrite replaces an existing CSV and the frames of an earlier run (never mixed)
+  rename     the CSV's final rename fails (its name became a folder during the run): the .tmp is
+             kept, whole, and the message names it; the header line arrives while the run goes on
+  killed     a SIGKILLed run leaves <csv>.tmp; the next run names it and refuses, --overwrite
+             replaces it
+  options    the solver options reach the solver: Chebyshev and Anderson change the trajectory,
+             --threads 2 gives the same one bit for bit (where OpenMP is), --ordering and
+             backward Euler's options run, the header names what runs
+  resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
+             frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink)
+Only the standard library."""
+
+import hashlib
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+P = "massspring-simulate: "
+
+
+def fail(message):
+    print("FAIL: " + message)
+    sys.exit(1)
+
+
+def check(condition, message):
+    if not condition:
+        fail(message)
+
+
+def snapshot(folder):
+    """Every file and folder under `folder` with its bytes' hash."""
+    out = {}
+    for root, dirs, files in os.walk(folder):
+        for d in dirs:
+            out[os.path.relpath(os.path.join(root, d), folder) + "/"] = "dir"
+        for f in files:
+            with open(os.path.join(root, f), "rb") as handle:
+                out[os.path.relpath(os.path.join(root, f), folder)] = hashlib.sha256(
+                    handle.read()).hexdigest()
+    return out
+
+
+def run(simulate, args, cwd, timeout=600):
+    return subprocess.run([simulate] + args, cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout)
+
+
+def prepare(source, work):
+    """The work folder every refusal starts from."""
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    for name in ("chain.json", "chain.obj"):
+        shutil.copy(os.path.join(source, "examples", "scenes", name), work)
+    shutil.copy(os.path.join(source, "examples", "scenes_xml", "orbit.xml"), work)
+    os.makedirs(os.path.join(work, "adir.json"))
+    os.makedirs(os.path.join(work, "stale"))
+    for f in range(3):
+        with open(os.path.join(work, "stale", f"frame_{f:05d}.obj"), "w") as handle:
+            handle.write("v 0 0 0\n")
+    for name, text in (("existing.csv", "keep me\n"), ("t.csv.tmp", "frame,point\n0,0\n"),
+                       ("file.txt", "a file\n"),
+                       ("edges.json", '{"obj": "edges.obj", "b": [1], "k": 10}\n'),
+                       ("edges.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n")):
+        with open(os.path.join(work, name), "w") as handle:
+            handle.write(text)
+
+
+FLOAT_OPTIONS = ["--dt", "--shrink", "--tolerance", "--penalty-weight", "--chebyshev-rho",
+                 "--chebyshev-gamma", "--newton-tolerance", "--guard-growth"]
+
+# (arguments, expected stderr after the prefix); every one exits 1 with nothing written.
+REFUSALS = [
+    (["chain.json", "--frames", "2", "--csv", "chain.json"],
+     "--csv chain.json: is chain.json, a file this run reads; choose another name"),
+    (["chain.json", "--csv", "chain.obj"],
+     "--csv chain.obj: is chain.obj, a file this run reads; choose another name"),
+    (["chain.json", "--save-state", "chain.json"],
+     "--save-state chain.json: is chain.json, a file this run reads; choose another name"),
+    (["chain.json", "--csv", "adir.json"], "--csv adir.json: is a directory; give a file name"),
+    (["chain.json", "--csv", "existing.csv"],
+     "--csv existing.csv: exists; give --overwrite to replace it, or choose another name"),
+    (["chain.json", "--csv", "t.csv"],
+     "--csv t.csv: t.csv.tmp exists, left by an earlier run that did not finish (killed?); it "
+     "may hold its output: move or delete it, or give --overwrite to replace it"),
+    (["chain.json", "--csv", "no/such/folder/x.csv"],
+     "--csv no/such/folder/x.csv: the folder no/such/folder does not exist"),
+    (["chain.json", "--csv", "a.csv", "--save-state", "a.csv"],
+     "--csv a.csv: another output of this run is a.csv; give each output its own file"),
+    (["chain.json", "--out", "stale"],
+     "--out stale: holds 3 frame files of an earlier run (frame_00000.obj ... frame_00002.obj); "
+     "give --overwrite to delete them first, or choose an empty folder"),
+    (["chain.json", "--out", "file.txt"], "--out file.txt: exists and is not a folder"),
+    (["chain.obj"], 'chain.obj: unsupported scene format ".obj": supported are .json (JSON+OBJ '
+                    'scene), .xml (FOSSSim XML scene)'),
+    (["edges.json"], 'edges.json: scene has no faces to take masses from: give a mass ("m")'),
+    (["none.json"], "none.json: cannot read JSON scene: no such file"),
+    (["orbit.xml", "--gravity", "0,-9.8,0"],
+     "--gravity: orbit.xml carries its own force terms (an XML scene); --gravity and --force "
+     "apply to JSON+OBJ and generated scenes"),
+    (["orbit.xml", "--save-state", "s.json"],
+     "--save-state s.json: orbit.xml has a gravitational attraction term, which a state file "
+     "cannot hold (it holds gravity, constant force and linear drag)"),
+    ([], "give either a scene file or --generate (see --help)"),
+    (["chain.json", "--generate", "chain"], "give either a scene file or --generate (see --help)"),
+    (["--generate", "blob"],
+     '--generate blob: unknown generator "blob" (expected cloth, chain or net)'),
+    (["--generate", "cloth:3"], "--generate cloth:3: expected cloth:COLUMNSxROWS with whole numbers"),
+    (["chain.json", "--frames", "abc"], '--frames: "abc" is not an integer'),
+    (["chain.json", "--frames", "1.5"], '--frames: "1.5" is not an integer'),
+    (["chain.json", "--frames", "-1"], "--frames: -1 is out of range (0 to 100000000)"),
+    (["chain.json", "--frames", "99999999999999999999"],
+     "--frames: 99999999999999999999 is out of range (0 to 100000000)"),
+    (["chain.json", "--dt", "0"], "--dt: must be > 0, got 0"),
+    (["chain.json", "--dt", "-1e-3"], "--dt: must be > 0, got -1e-3"),
+    (["chain.json", "--dt", "1e999"], "--dt: must be a finite number, got 1e999"),
+    (["chain.json", "--dt", "fast"], '--dt: "fast" is not a number'),
+    (["chain.json", "--every", "0"], "--every: 0 is out of range (1 to 100000000)"),
+    (["chain.json", "--threads", "0"], "--threads: 0 is out of range (1 to 256)"),
+    (["chain.json", "--iterations", "0"], "--iterations: 0 is out of range (1 to 1000000)"),
+    (["chain.json", "--acceleration", "chebyshev", "--chebyshev-rho", "1"],
+     "--chebyshev-rho: must be in [0, 1), got 1"),
+    (["chain.json", "--acceleration", "chebyshev", "--chebyshev-gamma", "0"],
+     "--chebyshev-gamma: must be in (0, 1], got 0"),
+    (["chain.json", "--acceleration", "anderson", "--anderson-window", "17"],
+     "--anderson-window: 17 is out of range (1 to 16)"),
+    (["chain.json", "--chebyshev-rho", "0.5"],
+     "--chebyshev-rho: applies to --acceleration chebyshev only (this run: fast-mass-spring, "
+     "--acceleration none)"),
+    (["chain.json", "--integrator", "symplectic-euler", "--iterations", "5"],
+     "--iterations: applies to --integrator fast-mass-spring only (this run: symplectic-euler)"),
+    (["chain.json", "--newton-tolerance", "1e-6"],
+     "--newton-tolerance: applies to --integrator backward-euler only (this run: "
+     "fast-mass-spring, --acceleration none)"),
+    (["chain.json", "--gravity", "0,1"], "--gravity: At least 3 required but received 2 (see --help)"),
+    (["chain.json", "--save-every", "5"], "--save-every 5: needs --save-state FILE"),
+    (["chain.json", "--precision", "float", "--pins", "penalty"],
+     "--pins penalty with --precision float: w = 10000000000 swamps the rest of Q in "
+     "float; use --pins exact"),
+    (["chain.json", "--storage", "dense", "--ordering", "nested-dissection"],
+     "FastMassSpring: options.ordering = NestedDissection: this storage's Cholesky takes no "
+     "given elimination order (use Sparse storage)"),
+    (["chain.json", "--bogus"], "The following argument was not expected: --bogus (see --help)"),
+    (["chain.json", "--integrator", "rk5"],
+     "--integrator: rk5 not in {forward-euler,symplectic-euler,backward-euler,"
+     "linearized-backward-euler,fast-mass-spring} (see --help)"),
+] + [(["chain.json", option, "nan"], f"{option}: must be a finite number, got nan")
+     for option in FLOAT_OPTIONS] + [
+    (["chain.json", "--gravity", "0,nan,0"], "--gravity: must be a finite number, got nan"),
+    (["chain.json", "--force", "inf,0,0"], "--force: must be a finite number, got inf"),
+]
+
+# Options that only apply with another integrator or acceleration, for the NaN rows above.
+CONTEXT = {"--chebyshev-rho": ["--acceleration", "chebyshev"],
+           "--chebyshev-gamma": ["--acceleration", "chebyshev"],
+           "--newton-tolerance": ["--integrator", "backward-euler"],
+           "--penalty-weight": ["--pins", "penalty"]}
+
+
+def refusals(simulate, source, work, table):
+    if table:
+        print("| input | exit | message | on disk before and after |")
+        print("|---|---|---|---|")
+    for args, expected in REFUSALS:
+        if args[1:2] and args[1] in CONTEXT and args[2] == "nan":
+            args = args + CONTEXT[args[1]]
+        prepare(source, work)
+        before = snapshot(work)
+        result = run(simulate, args, work)
+        after = snapshot(work)
+        command = "massspring-simulate " + " ".join(args)
+        if table:
+            same = "unchanged" if before == after else "CHANGED"
+            print(f"| `{' '.join(args)}` | {result.returncode} | `{result.stderr.strip()}` | {same} |")
+            continue
+        check(result.returncode == 1, f"{command}: exit {result.returncode}, expected 1\n"
+                                      f"{result.stdout}{result.stderr}")
+        check(result.stderr == P + expected + "\n",
+              f"{command}:\n  got      {result.stderr!r}\n  expected {P + expected!r}")
+        check(result.stdout == "", f"{command}: printed {result.stdout!r} (a run started?)")
+        check(before == after, f"{command}: the folder changed: "
+                               f"{set(before.items()) ^ set(after.items())}")
+    if not table:
+        print(f"OK: {len(REFUSALS)} refusals, each exit 1 with its message, nothing written")
+
+
+def help_text(simulate, work):
+    result = run(simulate, ["--help"], work)
+    check(result.returncode == 0, f"--help: exit {result.returncode}")
+    check(result.stderr == "", f"--help: stderr {result.stderr!r}")
+    flags = {"--help", "--overwrite", "--quiet"}
+    options = 0
+    for line in result.stdout.splitlines():
+        words = line.split()
+        if not words or not words[0].startswith("--") and not words[0].startswith("-h,"):
+            continue
+        name = words[0].split("=")[0].split(":")[0].split(",")[-1]
+        if name in flags:
+            continue
+        options += 1
+        check("=" in words[0] or (len(words) > 1 and "=" in words[1]),
+              f"--help shows no default for {name}: {line!r}")
+    check(options >= 30, f"--help lists {options} options with values, expected every one")
+    for name in ("--acceleration", "--chebyshev-rho", "--chebyshev-gamma", "--chebyshev-delay",
+                 "--anderson-window", "--threads", "--ordering", "--newton-iterations",
+                 "--newton-tolerance", "--line-search", "--save-state", "--save-every",
+                 "--overwrite"):
+        check(name in result.stdout, f"--help does not list {name}")
+    print(f"OK: --help exits 0, {options} options each with a default")
+
+
+def rows(path):
+    with open(path) as handle:
+        return handle.read().splitlines()
+
+
+def overwrite(simulate, source, work):
+    prepare(source, work)
+    result = run(simulate, ["chain.json", "--frames", "4", "--csv", "existing.csv",
+                            "--overwrite"], work)
+    check(result.returncode == 0, f"--overwrite csv: exit {result.returncode} {result.stderr}")
+    lines = rows(os.path.join(work, "existing.csv"))
+    check(lines[0] == "frame,point,x,y,z,vx,vy,vz" and len(lines) == 1 + 5 * 10,
+          f"existing.csv after --overwrite: {len(lines)} lines")
+    out = os.path.join(work, "frames")
+    check(run(simulate, ["chain.json", "--frames", "20", "--out", "frames"], work).returncode == 0,
+          "20 frames")
+    check(len(os.listdir(out)) == 21, "21 frames written")
+    result = run(simulate, ["chain.json", "--frames", "3", "--out", "frames", "--overwrite"], work)
+    check(result.returncode == 0, f"--overwrite --out: exit {result.returncode} {result.stderr}")
+    names = sorted(os.listdir(out))
+    check(names == [f"frame_{f:05d}.obj" for f in range(4)],
+          f"--out after 20 then 3 frames with --overwrite: {names[:3]}... ({len(names)} files)")
+    # A --save-state file can be replaced with --overwrite; without it, refused.
+    check(run(simulate, ["chain.json", "--frames", "2", "--save-state", "s.json"], work)
+          .returncode == 0, "save")
+    check(run(simulate, ["chain.json", "--frames", "2", "--save-state", "s.json"], work)
+          .returncode == 1, "a second --save-state to the same file without --overwrite")
+    check(run(simulate, ["chain.json", "--frames", "2", "--save-state", "s.json", "--overwrite"],
+              work).returncode == 0, "--save-state --overwrite")
+    print("OK: --overwrite replaces the CSV, the state and the frames (4 files, not 21)")
+
+
+def start_long_run(simulate, work, extra):
+    process = subprocess.Popen(
+        [simulate, "--generate", "cloth:20x15", "--frames", "100000000"] + extra,
+        cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    header = process.stdout.readline()  # flushed before the first step, through a pipe
+    check(process.poll() is None, f"the run ended before its header was read: {header!r}")
+    check(header.startswith("--generate cloth:20x15: 300 points"), f"header {header!r}")
+    return process
+
+
+def rename(simulate, source, work):
+    prepare(source, work)
+    csv = os.path.join(work, "traj.csv")
+    process = start_long_run(simulate, work, ["--csv", "traj.csv"])
+    os.makedirs(csv)  # the final rename will fail: its target is now a folder
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and os.path.getsize(csv + ".tmp") < 200000:
+        time.sleep(0.02)
+    process.send_signal(signal.SIGINT)
+    stdout, stderr = process.communicate(timeout=300)
+    print(stdout, stderr, sep="")
+    check(process.returncode == 130, f"exit {process.returncode}, expected 130")
+    expected = (f"{P}traj.csv: cannot rename traj.csv.tmp to it (Is a directory); the trajectory "
+                f"is kept, whole, in traj.csv.tmp\n")
+    check(stderr.startswith(expected), f"message {stderr!r}, expected it to start {expected!r}")
+    last = int(stderr.split("interrupted at frame ")[1].split(";")[0])
+    lines = rows(csv + ".tmp")
+    check(lines[0] == "frame,point,x,y,z,vx,vy,vz", "header of the kept .tmp")
+    check(len(lines) == 1 + 300 * (last + 1), f"{len(lines)} lines in the .tmp for frames 0..{last}")
+    check(lines[-1].startswith(f"{last},299,"), f"last row {lines[-1]!r}")
+    print(f"OK: rename failed, traj.csv.tmp kept with frames 0..{last}")
+
+
+def killed(simulate, source, work):
+    prepare(source, work)
+    tmp = os.path.join(work, "k.csv.tmp")
+    process = start_long_run(simulate, work, ["--csv", "k.csv"])
+    deadline = time.monotonic() + 300
+    while (not os.path.exists(tmp) or os.path.getsize(tmp) < 100000) and \
+            time.monotonic() < deadline and process.poll() is None:
+        time.sleep(0.02)
+    check(process.poll() is None, "the run ended before it was killed")
+    process.kill()
+    process.communicate(timeout=60)
+    check(os.path.exists(tmp) and not os.path.exists(os.path.join(work, "k.csv")),
+          "SIGKILL: k.csv.tmp left, no k.csv")
+    before = snapshot(work)
+    result = run(simulate, ["chain.json", "--frames", "2", "--csv", "k.csv"], work)
+    check(result.returncode == 1 and "k.csv.tmp exists, left by an earlier run" in result.stderr,
+          f"the next run: exit {result.returncode} {result.stderr!r}")
+    check(snapshot(work) == before, "the refused run changed the folder")
+    result = run(simulate, ["chain.json", "--frames", "2", "--csv", "k.csv", "--overwrite"], work)
+    check(result.returncode == 0, f"--overwrite: {result.returncode} {result.stderr}")
+    check(not os.path.exists(tmp) and len(rows(os.path.join(work, "k.csv"))) == 1 + 3 * 10,
+          "--overwrite: k.csv whole, no .tmp")
+    print("OK: a killed run's .tmp is named and kept; --overwrite replaces it")
+
+
+def options(simulate, source, work):
+    prepare(source, work)
+    base = ["--generate", "cloth:12x10", "--frames", "15", "--iterations", "5"]
+
+    def csv_of(name, extra, header=None):
+        args = base if "--integrator" not in extra else base[:4]  # no --iterations
+        result = run(simulate, args + extra + ["--csv", name], work)
+        check(result.returncode == 0, f"{extra}: exit {result.returncode} {result.stderr}")
+        if header:
+            check(header in result.stdout.splitlines()[0], f"{extra}: header {result.stdout!r}")
+        return rows(os.path.join(work, name))
+
+    plain = csv_of("plain.csv", [], "fast-mass-spring (exact pins, 5 iterations)")
+    chebyshev = csv_of("cheb.csv", ["--acceleration", "chebyshev", "--chebyshev-delay", "1"],
+                       "5 iterations, chebyshev)")
+    anderson = csv_of("anderson.csv", ["--acceleration", "anderson", "--anderson-window", "3"],
+                      "5 iterations, anderson)")
+    check(plain != chebyshev and plain != anderson and chebyshev != anderson,
+          "the accelerations give the plain trajectory: the option does not reach the solver")
+    check(csv_of("rho.csv", ["--acceleration", "chebyshev", "--chebyshev-delay", "1",
+                             "--chebyshev-rho", "0.3"]) != chebyshev, "--chebyshev-rho ignored")
+    for order in ("solver", "nested-dissection"):
+        csv_of(f"order_{order}.csv", ["--ordering", order])
+    threads = run(simulate, base + ["--threads", "2", "--csv", "threads.csv"], work)
+    if threads.returncode == 0:
+        check(rows(os.path.join(work, "threads.csv")) == plain, "--threads 2 changed the result")
+    else:  # built without OpenMP: the solver's refusal, with exit 1
+        check(threads.returncode == 1 and "threads" in threads.stderr, threads.stderr)
+    newton = ["--integrator", "backward-euler"]
+    loose = csv_of("loose.csv", newton + ["--newton-tolerance", "1e-2", "--newton-iterations",
+                                          "2", "--line-search", "off"], "backward-euler")
+    tight = csv_of("tight.csv", newton, "backward-euler")
+    check(loose != tight, "backward Euler's tolerance and iterations do not reach the solver")
+    print("OK: accelerations, rho, orderings, threads and Newton options reach the solver")
+
+
+def resume(simulate, source, work):
+    prepare(source, work)
+    # (scene, options): the resumed run gets the options again, except --dt and --integrator,
+    # which the state file records (with the frame number and Chebyshev's rho).
+    cases = [
+        (["--generate", "cloth:8x6"], []),
+        (["--generate", "cloth:8x6"], ["--acceleration", "chebyshev", "--iterations", "10"]),
+        (["--generate", "cloth:8x6"], ["--acceleration", "anderson", "--iterations", "10"]),
+        (["--generate", "chain:12"], ["--integrator", "backward-euler"]),
+        (["--generate", "chain:12"], ["--shrink", "0.5", "--precision", "float"]),
+        (["chain.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),
+    ]
+    for k, (scene, options) in enumerate(cases):
+        whole, first, second, state = (f"r{k}_20.csv", f"r{k}_a.csv", f"r{k}_b.csv",
+                                       f"r{k}_state.json")
+        again = [o for i, o in enumerate(options) if o not in ("--dt", "--integrator") and
+                 (i == 0 or options[i - 1] not in ("--dt", "--integrator"))]
+        args = scene + options
+        for command in (args + ["--frames", "20", "--csv", whole],
+                        args + ["--frames", "10", "--csv", first, "--save-state", state],
+                        [state, "--frames", "10", "--csv", second] + again):
+            result = run(simulate, command, work)
+            check(result.returncode == 0, f"{command}: exit {result.returncode} {result.stderr}")
+        a, b, c = (rows(os.path.join(work, f)) for f in (whole, first, second))
+        check(b[0] == c[0] == a[0], "CSV headers")
+        # the saved frame 10 is in both halves, equal; together they are the 20 frames exactly
+        tail = [r for r in c[1:] if not r.startswith("10,")]
+        check([r for r in b[1:] if r.startswith("10,")] == [r for r in c[1:] if r.startswith("10,")],
+              f"{args}: frame 10 differs between the first run's end and the resumed start")
+        check(a == b + tail, f"{args}: 10 + 10 frames differ from 20 frames")
+        check(all(r.split(",")[0] in {str(f) for f in range(10, 21)} for r in c[1:]),
+              f"{args}: the resumed run numbers its frames 10..20")
+    # Without --shrink's rest lengths at frame 0 a state cannot resume a shrinking run.
+    result = run(simulate, ["r0_state.json", "--shrink", "0.5"], work)
+    check(result.returncode == 1 and "was not saved by a run with the same --shrink" in
+          result.stderr, f"--shrink on a state without it: {result.stderr!r}")
+    print(f"OK: {len(cases)} runs resumed bit for bit (10 + 10 frames == 20 frames)")
+
+
+def main():
+    table = "--table" in sys.argv
+    argv = [a for a in sys.argv if a != "--table"]
+    if len(argv) != 5:
+        fail(__doc__)
+    simulate, source, work, case = argv[1:]
+    simulate = os.path.abspath(simulate)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    cases = {"refusals": lambda: refusals(simulate, source, work, table),
+             "help": lambda: help_text(simulate, work),
+             "overwrite": lambda: overwrite(simulate, source, work),
+             "rename": lambda: rename(simulate, source, work),
+             "killed": lambda: killed(simulate, source, work),
+             "options": lambda: options(simulate, source, work),
+             "resume": lambda: resume(simulate, source, work)}
+    if case not in cases:
+        fail(f"unknown case {case}")
+    cases[case]()
+    shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()

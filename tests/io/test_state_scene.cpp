@@ -1,0 +1,209 @@
+// io/state_scene.hpp: write_scene() then read_state_scene() (and load_scene()) gives a system equal
+// in every field, bit for bit, in double and float; one FastMassSpring step from each gives the
+// same state; what cannot be written or read is refused, naming the file.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <massspring/forces/gravitational_attraction.hpp>
+#include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/io/load_scene.hpp>
+#include <massspring/io/state_scene.hpp>
+#include <massspring/scene/cloth.hpp>
+#include <massspring/scene/make_system.hpp>
+#include <random>
+#include <string>
+
+#include "io/test_files.hpp"
+
+namespace {
+
+using massspring::Error;
+using massspring::test::TempDir;
+
+// Every field of a and b, exactly (== on floating point: bit for bit for finite values).
+template <class System>
+void check_equal(const System& a, const System& b) {
+  REQUIRE(a.num_points() == b.num_points());
+  REQUIRE(a.num_springs() == b.num_springs());
+  CHECK((a.rest_positions().array() == b.rest_positions().array()).all());
+  CHECK((a.springs().array() == b.springs().array()).all());
+  CHECK((a.masses().array() == b.masses().array()).all());
+  CHECK((a.stiffness().array() == b.stiffness().array()).all());
+  CHECK((a.rest_lengths().array() == b.rest_lengths().array()).all());
+  CHECK((a.damping().array() == b.damping().array()).all());
+  CHECK(a.pinned() == b.pinned());
+  CHECK((a.pin_targets().array() == b.pin_targets().array()).all());
+  CHECK((a.positions().array() == b.positions().array()).all());
+  CHECK((a.velocities().array() == b.velocities().array()).all());
+  CHECK(a.has_spring_damping() == b.has_spring_damping());
+  REQUIRE(a.forces().size() == b.forces().size());
+  using Scalar = typename System::Scalar;
+  for (int k = 0; k < a.forces().size(); ++k) {
+    CAPTURE(k);
+    CHECK(std::string(a.forces()[k].name) == b.forces()[k].name);
+    if (const auto* g = a.forces().template find<massspring::Gravity<Scalar>>())
+      CHECK(g->g == b.forces().template find<massspring::Gravity<Scalar>>()->g);
+    if (const auto* f = a.forces().template find<massspring::ConstantForce<Scalar>>())
+      CHECK(f->force == b.forces().template find<massspring::ConstantForce<Scalar>>()->force);
+    if (const auto* d = a.forces().template find<massspring::LinearDrag<Scalar>>())
+      CHECK(d->beta == b.forces().template find<massspring::LinearDrag<Scalar>>()->beta);
+  }
+}
+
+// A cloth whose every field differs from point to point or spring to spring, mid-motion.
+template <class System>
+System scrambled_cloth() {
+  using Scalar = typename System::Scalar;
+  massspring::ClothOptions o;
+  o.columns = 7;
+  o.rows = 5;
+  System s = massspring::make_system<System>(massspring::make_cloth(o));
+  std::mt19937 random(42);
+  std::uniform_real_distribution<double> u(0.1, 3.0);
+  massspring::Vector<Scalar> m(s.num_points()), k(s.num_springs()), r(s.num_springs()),
+      b(s.num_springs());
+  for (int i = 0; i < s.num_points(); ++i) m(i) = Scalar(u(random) / 7);  // not short decimals
+  for (int e = 0; e < s.num_springs(); ++e) {
+    k(e) = Scalar(u(random) * 1000 / 3);
+    r(e) = Scalar(s.rest_lengths()(e) * u(random) / 1.7);
+    b(e) = e % 3 ? Scalar(0) : Scalar(u(random) / 11);
+  }
+  s.set_masses(m);
+  s.set_stiffness(k);
+  s.set_rest_lengths(r);
+  s.set_damping(b);
+  s.pin(3, massspring::Vector3<Scalar>(Scalar(0.1) / 3, Scalar(-2) / 7, Scalar(1e-17)));
+  s.set_pin_target(s.pinned().front(), massspring::Vector3<Scalar>(Scalar(1) / 3, 0, 0));
+  massspring::Points<Scalar> x = s.positions(), v(s.num_points(), 3);
+  for (int i = 0; i < x.rows(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      x(i, c) += Scalar(u(random) / 97);
+      v(i, c) = Scalar(u(random) - 1.5);
+    }
+  v(1, 0) = Scalar(-0.0);  // a negative zero survives too
+  v(2, 1) = Scalar(1e-300 > 0 && sizeof(Scalar) == 8 ? 1e-300 : 1e-38);
+  s.set_positions(x);
+  s.set_velocities(v);
+  s.add_force(massspring::Gravity<Scalar>({0, Scalar(-9.8), Scalar(0.1) / 3}));
+  s.add_force(massspring::LinearDrag<Scalar>(Scalar(0.3) / 7));
+  s.add_force(massspring::ConstantForce<Scalar>({Scalar(1e-3) / 3, 0, 0}));
+  return s;
+}
+
+template <class System>
+void round_trip() {
+  TempDir dir;
+  const System a = scrambled_cloth<System>();
+  massspring::io::StateSceneExtras extras;
+  extras.faces = {{0, 1, 8}, {1, 2, 9, 8}};
+  extras.edges = massspring::Edges(1, 2);
+  extras.edges << 3, 4;
+  extras.run = {{"frame", 12}, {"integrator", "fast-mass-spring"}};
+  massspring::io::write_scene(a, dir / "state.json", extras);
+  CHECK_FALSE(std::filesystem::exists(dir / "state.json.tmp"));
+
+  const auto read = massspring::io::read_state_scene<System>(dir / "state.json");
+  check_equal(a, read.system);
+  CHECK(std::signbit(read.system.velocities()(1, 0)));  // == does not see the sign of a zero
+  CHECK(read.extras.faces == extras.faces);
+  CHECK(read.extras.edges == extras.edges);
+  CHECK(read.extras.run == extras.run);
+
+  // load_scene() recognises it, and says which files it read.
+  const auto loaded = massspring::io::load_scene_file<System>(dir / "state.json");
+  CHECK(loaded.state);
+  CHECK(loaded.files.size() == 1);
+  check_equal(a, loaded.system);
+
+  // Written again from the loaded system: the same bytes.
+  massspring::io::write_scene(read.system, dir / "again.json", extras);
+  CHECK(massspring::test::read_bytes(dir / "state.json") ==
+        massspring::test::read_bytes(dir / "again.json"));
+
+  // The same step from each: the same state, bit for bit.
+  System x = a, y = read.system;
+  massspring::FastMassSpring<System> sx, sy;
+  sx.precompute(x, typename System::Scalar(1.0 / 30));
+  sy.precompute(y, typename System::Scalar(1.0 / 30));
+  for (int step = 0; step < 3; ++step) {
+    REQUIRE(sx.step(x).ok());
+    REQUIRE(sy.step(y).ok());
+  }
+  CHECK((x.positions().array() == y.positions().array()).all());
+  CHECK((x.velocities().array() == y.velocities().array()).all());
+}
+
+}  // namespace
+
+TEST_CASE("state scene: write_scene then read_state_scene gives every field back, double") {
+  round_trip<massspring::MassSpringSystem<double, massspring::Sparse>>();
+}
+
+TEST_CASE("state scene: write_scene then read_state_scene gives every field back, float") {
+  round_trip<massspring::MassSpringSystem<float, massspring::Dense>>();
+}
+
+TEST_CASE("state scene: a term it cannot hold is refused and nothing is written") {
+  TempDir dir;
+  using System = massspring::MassSpringSystem<double, massspring::Sparse>;
+  System s = scrambled_cloth<System>();
+  s.add_force(massspring::GravitationalAttraction<double>::all_pairs(3, 1.0));
+  const auto path = dir / "s.json";
+  CHECK_THROWS_WITH_AS(
+      massspring::io::write_scene(s, path),
+      (path.string() + ": force term 3 (gravitational attraction) cannot be written: a state "
+                       "scene holds gravity, constant force and linear drag terms")
+          .c_str(),
+      Error);
+  CHECK_FALSE(std::filesystem::exists(path));
+  CHECK_FALSE(std::filesystem::exists(dir / "s.json.tmp"));
+}
+
+TEST_CASE("state scene: bad files are refused, naming the file") {
+  TempDir dir;
+  using System = massspring::MassSpringSystem<double, massspring::Dense>;
+  massspring::io::write_scene(scrambled_cloth<System>(), dir / "good.json");
+  std::string text = massspring::test::read_bytes(dir / "good.json");
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const auto at = t.find(from);
+    REQUIRE(at != std::string::npos);
+    return dir.write("bad.json", t.replace(at, from.size(), to));
+  };
+  const std::string bad = (dir / "bad.json").string();
+  CHECK_THROWS_WITH_AS(
+      massspring::io::load_scene<System>(
+          with("\"massspring_state\": 1", "\"massspring_state\": 2")),
+      (bad + ": key \"massspring_state\": this reader knows version 1, got 2").c_str(), Error);
+  CHECK_THROWS_WITH_AS(
+      massspring::io::load_scene<System>(with("\"masses\": [", "\"masses\": [0, ")),
+      (bad + ": key \"masses\": expected 35 values, got 36").c_str(), Error);
+  // an error of the system's constructor or setters gets the file's name
+  auto first_value = [&](const std::string& key, const std::string& value) {
+    const std::string from = "\"" + key + "\": [";
+    const auto at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    const auto begin = at + from.size();
+    const auto end = text.find_first_of(",]", begin);
+    std::string t = text;
+    return dir.write("bad.json", t.replace(begin, end - begin, value));
+  };
+  CHECK_THROWS_WITH_AS(massspring::io::load_scene<System>(first_value("damping", "-1")),
+                       (bad + ": spring 0: damping must be finite and >= 0, got -1").c_str(),
+                       Error);
+  CHECK_THROWS_WITH_AS(massspring::io::load_scene<System>(first_value("pinned", "99")),
+                       (bad + ": pin: point index 99 out of range [0, 35)").c_str(), Error);
+  CHECK_THROWS_WITH_AS(
+      massspring::io::load_scene<System>(with("\"pinned\": [", "\"pinned\": [9, ")),
+      (bad + ": key \"pin_targets\": expected 4 rows, got 3").c_str(), Error);
+  CHECK_THROWS_WITH_AS(massspring::io::load_scene<System>(
+                           with("\"massspring_state\": 1", "\"massspring_state\": 1, \"x\": 0")),
+                       (bad + ": unknown key \"x\"").c_str(), Error);
+  // read_json_scene (the JSON+OBJ reader) says what the file is
+  CHECK_THROWS_WITH_AS(massspring::io::read_json_scene(dir / "good.json"),
+                       ((dir / "good.json").string() +
+                        ": a state scene (written by io::write_scene), not a JSON+OBJ scene: load "
+                        "it with io::load_scene or io::read_state_scene")
+                           .c_str(),
+                       Error);
+}
