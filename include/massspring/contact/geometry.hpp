@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "massspring/contact/point_plane.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
-#include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {

@@ -26,9 +26,9 @@
 #include "massspring/contact/geometry.hpp"
 #include "massspring/contact/point_plane.hpp"
 #include "massspring/contact/point_segment.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
-#include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <vector>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
-#include "massspring/system/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

@@ -10,8 +10,8 @@
 #include "massspring/contact/broad_phase.hpp"
 #include "massspring/contact/collision_handler.hpp"
 #include "massspring/contact/geometry.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
-#include "massspring/system/detail/validate.hpp"
 
 namespace massspring::contact::detail {
 
