@@ -378,10 +378,10 @@ TEST_CASE("X3 wrong or second root element") {
 }
 
 TEST_CASE("X4 unknown element or attribute") {
-  CHECK(xml_error(xml_scene("<vortexforce i=\"0\" j=\"1\"/>\n")) ==
-        "s.xml:5: unknown element <vortexforce> (massspring reads particle, edge, springforce, "
-        "simplegravity, gravitationalforce, dragdamping, integrator, duration; it does not "
-        "implement the others)");
+  CHECK(xml_error(xml_scene("<rigidbody i=\"0\"/>\n")) ==
+        "s.xml:5: unknown element <rigidbody> (massspring reads particle, edge, halfplane, "
+        "springforce, simplegravity, gravitationalforce, dragdamping, vortexforce, collision, "
+        "collisiondetection, integrator, duration, and ignores the rendering elements)");
   CHECK(xml_error(xml_scene("<edge i=\"0\" j=\"1\" colour=\"red\"/>\n")) ==
         "s.xml:5: <edge> 0: unknown attribute \"colour\" (expected i, j, radius)");
 }
@@ -408,7 +408,7 @@ TEST_CASE("X6 repeated duration or integrator") {
 TEST_CASE("X7 unknown integrator type") {
   CHECK(xml_error(xml_scene("", R"(<integrator type="rk4" dt="0.01"/>)")) ==
         "s.xml:2: <integrator>: unknown type \"rk4\" (expected explicit-euler, symplectic-euler, "
-        "linearized-implicit-euler or implicit-euler)");
+        "forward-backward-euler, linearized-implicit-euler or implicit-euler)");
 }
 
 TEST_CASE("X8 value that is not a number, not finite or out of range") {
@@ -509,6 +509,36 @@ TEST_CASE("X15 forces that add up to a non-finite value") {
         "finite");
   CHECK(xml_error(xml_scene("<dragdamping b=\"1e308\"/>\n<dragdamping b=\"1e308\"/>\n")) ==
         "s.xml:6: <dragdamping>: the coefficients so far add up to inf, which is not finite");
+}
+
+TEST_CASE("X17 collision, collisiondetection, halfplane and vortexforce (Theme 2)") {
+  CHECK(xml_error(xml_scene("<collision/>\n")) ==
+        "s.xml:5: <collision>: missing required attribute \"type\"");
+  CHECK(xml_error(xml_scene("<collision type=\"soft\"/>\n")) ==
+        "s.xml:5: <collision>: unknown type \"soft\" (expected none, simple, penalty, "
+        "continuous-time or hybrid)");
+  CHECK(xml_error(xml_scene("<collision type=\"simple\" k=\"3\"/>\n")) ==
+        "s.xml:5: <collision>: attribute \"k\" does not apply to type \"simple\" (it reads COR)");
+  CHECK(xml_error(xml_scene("<collision type=\"penalty\" mu=\"3\"/>\n")) ==
+        "s.xml:5: <collision>: unknown attribute \"mu\" (type \"penalty\" reads k and "
+        "thickness)");
+  CHECK(xml_error(xml_scene("<collision type=\"simple\" COR=\"1.5\"/>\n")) ==
+        "s.xml:5: <collision>: COR = 1.5 must be in [0, 1]");
+  CHECK(xml_error(xml_scene("<collision type=\"penalty\" k=\"-1\"/>\n")) ==
+        "s.xml:5: <collision>: k = -1 must be >= 0");
+  CHECK(xml_error(xml_scene("<collision type=\"hybrid\" maxiters=\"2.5\"/>\n")) ==
+        "s.xml:5: <collision>: maxiters = \"2.5\" must be a whole number >= 0");
+  CHECK(xml_error(xml_scene("<collision type=\"none\"/>\n<collision type=\"none\"/>\n")) ==
+        "s.xml:6: <collision> appears twice (first on line 5)");
+  CHECK(xml_error(xml_scene("<collisiondetection type=\"octree\"/>\n")) ==
+        "s.xml:5: <collisiondetection>: unknown type \"octree\" (expected allpairs or contest)");
+  CHECK(xml_error(xml_scene("<halfplane px=\"0\" py=\"0\" nx=\"0\" ny=\"0\"/>\n")) ==
+        "s.xml:5: <halfplane> 0: the normal (nx, ny) = (0, 0) must be non-zero (and its square "
+        "finite)");
+  CHECK(xml_error(xml_scene("<vortexforce i=\"1\" j=\"1\" kbs=\"1\" kvc=\"1\"/>\n")) ==
+        "s.xml:5: <vortexforce> 0 acts between particle 1 and itself");
+  CHECK(xml_error(xml_scene("<vortexforce i=\"0\" j=\"1\"/>\n")) ==
+        "s.xml:5: <vortexforce> 0: missing required attribute \"kbs\"");
 }
 
 TEST_CASE("X16 missing or unreadable XML file") {

@@ -1,5 +1,5 @@
 // io/fosssim_scene.hpp: every FOSSSim scene in ../shared loads as SOURCE.md's table lists it
-// (VortexExample is refused, naming <vortexforce> and its line), the systems built from them, the
+// (VortexExample with its vortex force), the systems built from them, the
 // writer's exact round trip, and every refusal with its file:line message.
 #include <doctest/doctest.h>
 
@@ -12,6 +12,7 @@
 #include <massspring/forces/gravitational_attraction.hpp>
 #include <massspring/forces/gravity.hpp>
 #include <massspring/forces/linear_drag.hpp>
+#include <massspring/forces/vortex.hpp>
 #include <massspring/io/fosssim_scene.hpp>
 #include <massspring/io/load_scene.hpp>
 #include <sstream>
@@ -100,14 +101,6 @@ std::map<std::string, int> other_forces(const std::string& cell) {
   return out;
 }
 
-// 1-based line of the first occurrence of `needle` in a file (an independent line count).
-int line_of(const fs::path& file, const std::string& needle) {
-  const std::string text = massspring::test::read_bytes(file);
-  const auto at = text.find(needle);
-  REQUIRE(at != std::string::npos);
-  return 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n'));
-}
-
 const char* const kHead =
     "<scene>\n"
     "  <duration time=\"1\"/>\n"
@@ -136,7 +129,7 @@ TEST_CASE("fosssim: every scene in ../shared loads as SOURCE.md's table lists it
   for (const Row& row : rows) {
     CAPTURE(row.file);
     const fs::path file = fosssim_dir() / row.file;
-    if (row.file.find("VortexExample") != std::string::npos) continue;  // below
+    if (row.file.find("VortexExample") != std::string::npos) continue;  // its own test
     const FosssimScene s = read_fosssim_scene(file);
     CHECK(massspring::io::to_string(s.integrator) == row.integrator);
     CHECK(s.dt == row.dt);
@@ -161,20 +154,24 @@ TEST_CASE("fosssim: every scene in ../shared loads as SOURCE.md's table lists it
     ++loaded;
   }
   CHECK(loaded == 69);
-  MESSAGE("fosssim: " << loaded << " of 70 scenes load (VortexExample refused)");
+  MESSAGE("fosssim: " << loaded << " of 70 Theme-1 scenes checked here (VortexExample below)");
 }
 
-TEST_CASE("fosssim: VortexExample is refused, naming <vortexforce> and its line" *
+TEST_CASE("fosssim: VortexExample loads: six vortex pairs as the file lists them" *
           doctest::skip(!have_fosssim())) {
   const fs::path file = fosssim_dir() / "t1m3" / "VortexExample.xml";
-  const int line = line_of(file, "<vortexforce");
-  CHECK(line == 16);
-  CHECK_THROWS_WITH_AS(
-      read_fosssim_scene(file),
-      contains(file.string() + ":" + std::to_string(line) + ": unknown element <vortexforce>"),
-      Error);
-  CHECK_THROWS_WITH_AS(massspring::io::load_scene<SparseSystem>(file),
-                       contains(file.string() + ":16: unknown element <vortexforce>"), Error);
+  const FosssimScene s = read_fosssim_scene(file);
+  REQUIRE(s.vortices.size() == 6);
+  const int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {4, 1}, {4, 2}, {4, 3}};
+  for (int k = 0; k < 6; ++k) {
+    CHECK(s.vortices[std::size_t(k)].i == pairs[k][0]);
+    CHECK(s.vortices[std::size_t(k)].j == pairs[k][1]);
+    CHECK(s.vortices[std::size_t(k)].kbs == 0.8);
+    CHECK(s.vortices[std::size_t(k)].kvc == 1000.0);
+  }
+  const auto system = massspring::io::load_scene<SparseSystem>(file);
+  CHECK(system.forces().size() == 1);
+  CHECK(system.forces().find<massspring::VortexForce<double>>() != nullptr);
 }
 
 TEST_CASE("fosssim: the systems carry the scenes' numbers" * doctest::skip(!have_fosssim())) {
@@ -384,8 +381,9 @@ TEST_CASE("fosssim: refusals name the file, the line and the item") {
                          Error);
   }
   SUBCASE("elements and attributes") {
-    refuses("  <vortexforce i=\"0\" j=\"1\" kbs=\"1\" kvc=\"1\"/>\n", 4,
-            "unknown element <vortexforce>");
+    refuses(std::string(kTwo) + "  <vortexforce i=\"0\" j=\"1\" kbs=\"1\"/>\n", 6,
+            "<vortexforce> 0: missing required attribute \"kvc\"");
+    refuses("  <rigidbody/>\n", 4, "unknown element <rigidbody>");
     refuses("\n  <Particle/>\n", 5, "unknown element <Particle>");
     refuses("  <duration time=\"2\"/>\n", 4, "<duration> appears twice (first on line 2)");
     refuses("  <integrator type=\"explicit-euler\" dt=\"2\"/>\n", 4,
@@ -453,7 +451,7 @@ TEST_CASE("fosssim: refusals name the file, the line and the item") {
     CHECK_THROWS_WITH_AS(
         read_fosssim_scene(type),
         contains(type.string() + ":3: <integrator>: unknown type \"rk4\" (expected "
-                                 "explicit-euler, symplectic-euler, "
+                                 "explicit-euler, symplectic-euler, forward-backward-euler, "
                                  "linearized-implicit-euler or implicit-euler)"),
         Error);
   }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "massspring/contact/collision_handler.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/detail/jacobian_assembly.hpp"
@@ -52,6 +53,9 @@ struct BackwardEulerOptions {
 /// projection (compressed springs' transverse stiffness clamped to 0) so each direction descends.
 /// The pattern of A is recorded in precompute() (and again after the system's revision changes);
 /// each step assembles values into it and factorises numerically.
+///
+/// The system's collision handler, if any, acts on the end-of-step state before it is committed
+/// (contact/collision_handler.hpp).
 ///
 /// Pinned points sit at their targets (velocity (target - x) / h): their rows and columns are the
 /// identity with a zero right-hand side.
@@ -145,6 +149,13 @@ class BackwardEuler {
     v_ = v0 + moved_ / h;
     for (std::size_t r = 0; r < pinned.size(); ++r)
       v_.row(pinned[r]) = (x_.row(pinned[r]) - x0.row(pinned[r])) / h;
+    if (system.collision_handler()) {
+      contact::handle_collisions(system, x0, v0, x_, v_, h);
+      for (std::size_t r = 0; r < pinned.size(); ++r) {  // an impact zone may have reset one
+        x_.row(pinned[r]) = system.pin_targets().row(Eigen::Index(r));
+        v_.row(pinned[r]) = (x_.row(pinned[r]) - x0.row(pinned[r])) / h;
+      }
+    }
     report.finite = x_.allFinite() && v_.allFinite();
     if (report.finite) {
       system.positions() = x_;

@@ -9,7 +9,8 @@ namespace massspring {
 /// @brief Explicit (forward) Euler. First order; unstable for stiff springs beyond
 /// h ~ 2 / omega_max, and it adds energy to orbits and oscillators at every step.
 ///
-/// Pinned points sit at their targets (velocity (target - x) / h). step() allocates nothing.
+/// Pinned points sit at their targets (velocity (target - x) / h). The system's collision handler,
+/// if any, acts on the end-of-step state (contact/collision_handler.hpp). step() allocates nothing.
 /// @tparam System a MassSpringSystem<Scalar, Storage> (the storage is not used: no matrices)
 template <class System>
 class ForwardEuler {

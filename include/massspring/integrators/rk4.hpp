@@ -16,7 +16,8 @@ namespace massspring {
 /// solutions (diagnostics/reference_solution.hpp); it is also a good choice on its own when
 /// accuracy matters more than stiffness.
 ///
-/// Pinned points stay at their targets in every stage (velocity and acceleration zero). step()
+/// Pinned points stay at their targets in every stage (velocity and acceleration zero). The
+/// system's collision handler, if any, acts on the end-of-step state. step()
 /// allocates nothing; a non-finite result leaves the system unchanged.
 template <class System>
 class RK4 {

@@ -11,7 +11,8 @@ namespace massspring {
 /// conservative forces it keeps the energy bounded instead of letting it grow: orbits stay
 /// closed.
 ///
-/// Pinned points sit at their targets (velocity (target - x) / h). step() allocates nothing.
+/// Pinned points sit at their targets (velocity (target - x) / h). The system's collision handler,
+/// if any, acts on the end-of-step state (contact/collision_handler.hpp). step() allocates nothing.
 template <class System>
 class SymplecticEuler {
  public:

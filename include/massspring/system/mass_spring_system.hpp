@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "massspring/contact/collision_handler.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
 #include "massspring/storage/storage.hpp"
@@ -268,6 +269,23 @@ class MassSpringSystem {
     return {x, v, masses_, springs_, stiffness_, rest_lengths_, damping_, definite};
   }
 
+  // ---- collision response at the end of each step (contact/collision_handler.hpp) ------------
+
+  /// @brief Sets the handler the integrators apply at the end of every step (a type derived from
+  /// contact::CollisionHandler<Scalar>: SimpleCollisionHandler, ContinuousTimeCollisionHandler,
+  /// HybridCollisionHandler, or your own), replacing any previous one. Copies of the system get
+  /// their own copy. Not a model change: no new revision.
+  template <class Handler>
+  void set_collision_handler(Handler handler) {
+    collision_handler_.set(std::move(handler));
+  }
+  /// @brief Removes the collision handler.
+  void clear_collision_handler() { collision_handler_.reset(); }
+  /// @brief The collision handler, or nullptr when there is none.
+  [[nodiscard]] contact::CollisionHandler<Scalar>* collision_handler() const {
+    return collision_handler_.get();
+  }
+
   /// @brief Identifies the model Q is built from: it changes, to a value no system had before,
   /// whenever masses, stiffness, springs, the pinned set or the force terms change. Copies share
   /// it.
@@ -384,6 +402,7 @@ class MassSpringSystem {
   VectorType masses_, stiffness_, rest_lengths_, damping_;
   std::vector<int> pinned_;
   ForceSet<Scalar> forces_;
+  contact::CollisionHandlerSlot<Scalar> collision_handler_;
   bool damped_ = false;
   PointsType pin_targets_ = PointsType(0, 3);
   PointsType positions_ = PointsType(0, 3);

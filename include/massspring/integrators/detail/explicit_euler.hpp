@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "massspring/contact/collision_handler.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/step_report.hpp"
@@ -49,14 +50,22 @@ class ExplicitStepper {
     for (int i = 0; i < n_; ++i) v_.row(i) = v.row(i) + (dt_ * inverse_mass_(i)) * f_.row(i);
   }
 
-  /// @brief Pins, finiteness check, commit. x_ and v_ hold the candidate state.
+  /// @brief Pins, collision response (the system's handler, if any), finiteness check, commit.
+  /// x_ and v_ hold the candidate state.
   StepReport commit(System& system) {
     const PointsType& x0 = system.positions();
     const auto& pinned = system.pinned();
-    for (std::size_t r = 0; r < pinned.size(); ++r) {
-      const int i = pinned[r];
-      x_.row(i) = system.pin_targets().row(Eigen::Index(r));
-      v_.row(i) = (x_.row(i) - x0.row(i)) / dt_;
+    auto pin = [&] {
+      for (std::size_t r = 0; r < pinned.size(); ++r) {
+        const int i = pinned[r];
+        x_.row(i) = system.pin_targets().row(Eigen::Index(r));
+        v_.row(i) = (x_.row(i) - x0.row(i)) / dt_;
+      }
+    };
+    pin();
+    if (system.collision_handler()) {
+      contact::handle_collisions(system, x0, system.velocities(), x_, v_, dt_);
+      pin();  // a handler leaves pinned points alone; an impact zone may have reset one
     }
     StepReport report;
     // One vectorised pass: a sum is finite only when every term is (a sum of finite values can

@@ -1,0 +1,261 @@
+#pragma once
+/// @file
+/// @brief parse_fosssim_scene() and read_fosssim_scene(): a FOSSSim XML scene, read strictly
+/// with pugixml (the schema: io/fosssim_scene.hpp and docs/scenes.md).
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <pugixml.hpp>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "massspring/error.hpp"
+#include "massspring/io/detail/text_file.hpp"
+#include "massspring/io/fosssim/reader.hpp"
+#include "massspring/io/fosssim/scene.hpp"
+#include "massspring/io/fosssim/theme2.hpp"
+
+namespace massspring::io {
+
+/// @brief Parses a FOSSSim scene held in memory; `name` is the file name used in messages.
+/// @throws Error as read_fosssim_scene() does.
+inline FosssimScene parse_fosssim_scene(const std::string& text, const std::string& name) {
+  // rapidxml (the course's parser) reads `a="1"b="2"`; separate such attributes first (no
+  // line moves, so every line number below is the file's)
+  const std::string separated = detail::separate_attributes(text);
+  detail::FosssimReader r(name, separated);
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed =
+      doc.load_buffer(separated.data(), separated.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!parsed)
+    throw r.error(r.line_of(parsed.offset), "not well-formed XML: ", parsed.description());
+
+  pugi::xml_node root;
+  for (const pugi::xml_node& node : doc.children()) {
+    if (node.type() != pugi::node_element) continue;
+    if (root)
+      throw r.error(r.line(node), "a second root element <", node.name(),
+                    "> (a scene file holds one <scene>)");
+    root = node;
+  }
+  if (!root) throw r.error(1, "no <scene> element");
+  if (std::string_view(root.name()) != "scene")
+    throw r.error(r.line(root), "the root element is <", root.name(), ">, expected <scene>");
+
+  FosssimScene scene;
+  struct Pending {
+    pugi::xml_node node;
+    int k;
+  };
+  std::vector<Pending> particles, edges, springs, attractions, halfplanes, vortices;
+  pugi::xml_node duration, integrator, collision, detection;
+  for (const pugi::xml_node& node : root.children()) {
+    if (node.type() != pugi::node_element) continue;
+    const std::string_view tag = node.name();
+    if (tag == "particle") {
+      particles.push_back({node, int(particles.size())});
+    } else if (tag == "edge") {
+      edges.push_back({node, int(edges.size())});
+    } else if (tag == "springforce") {
+      springs.push_back({node, int(springs.size())});
+    } else if (tag == "gravitationalforce") {
+      attractions.push_back({node, int(attractions.size())});
+    } else if (tag == "halfplane") {
+      halfplanes.push_back({node, int(halfplanes.size())});
+    } else if (tag == "vortexforce") {
+      vortices.push_back({node, int(vortices.size())});
+    } else if (tag == "duration" || tag == "integrator" || tag == "collision" ||
+               tag == "collisiondetection") {
+      pugi::xml_node& slot = tag == "duration"     ? duration
+                             : tag == "integrator" ? integrator
+                             : tag == "collision"  ? collision
+                                                   : detection;
+      if (slot)
+        throw r.error(r.line(node), '<', tag, "> appears twice (first on line ", r.line(slot), ')');
+      slot = node;
+    } else if (tag == "simplegravity") {
+      r.check_attributes(node, "<simplegravity>", {"fx", "fy"}, {});
+      const Vector3<double> g(r.number(node, "<simplegravity>", "fx"),
+                              r.number(node, "<simplegravity>", "fy"), 0.0);
+      scene.gravity = scene.gravity ? Vector3<double>(*scene.gravity + g) : g;
+      if (!scene.gravity->allFinite())
+        throw r.error(r.line(node), "<simplegravity>: the accelerations so far add up to ",
+                      massspring::detail::format_row(*scene.gravity), ", which is not finite");
+    } else if (tag == "dragdamping") {
+      r.check_attributes(node, "<dragdamping>", {"b"}, {});
+      const double b = r.nonnegative(node, "<dragdamping>", "b", false);
+      scene.drag = scene.drag.value_or(0.0) + b;
+      if (!std::isfinite(*scene.drag))
+        throw r.error(r.line(node), "<dragdamping>: the coefficients so far add up to ",
+                      *scene.drag, ", which is not finite");
+    } else if (tag == "description") {
+      r.check_attributes(node, "<description>", {"text"}, {});
+      scene.description = node.attribute("text").value();
+    } else if (tag == "scenetag") {
+      r.check_attributes(node, "<scenetag>", {"tag"}, {});
+      scene.tags.emplace_back(node.attribute("tag").value());
+    } else if (!detail::fosssim_rendering_only(tag)) {
+      throw r.error(r.line(node), "unknown element <", tag,
+                    "> (massspring reads particle, edge, halfplane, springforce, simplegravity, "
+                    "gravitationalforce, dragdamping, vortexforce, collision, collisiondetection, "
+                    "integrator, duration, and ignores the rendering elements)");
+    }
+  }
+
+  // duration and integrator
+  if (!duration) throw r.error(r.line(root), "<scene> has no <duration time=\"...\"/>");
+  if (!integrator)
+    throw r.error(r.line(root), "<scene> has no <integrator type=\"...\" dt=\"...\"/>");
+  r.check_attributes(duration, "<duration>", {"time"}, {});
+  scene.duration = r.nonnegative(duration, "<duration>", "time", false);
+  r.check_attributes(integrator, "<integrator>", {"type", "dt"}, {});
+  {
+    const std::string_view type =
+        detail::FosssimReader::trimmed(integrator.attribute("type").value());
+    bool found = false;
+    for (FosssimIntegrator candidate :
+         {FosssimIntegrator::ExplicitEuler, FosssimIntegrator::SymplecticEuler,
+          FosssimIntegrator::LinearizedImplicitEuler, FosssimIntegrator::ImplicitEuler})
+      if (type == to_string(candidate)) {
+        scene.integrator = candidate;
+        found = true;
+      }
+    if (type == "forward-backward-euler") {  // Theme 2's name of the same method
+      scene.integrator = FosssimIntegrator::SymplecticEuler;
+      found = true;
+    }
+    if (!found)
+      throw r.error(r.line(integrator), "<integrator>: unknown type \"",
+                    integrator.attribute("type").value(),
+                    "\" (expected explicit-euler, symplectic-euler, forward-backward-euler, "
+                    "linearized-implicit-euler or implicit-euler)");
+    scene.dt = r.nonnegative(integrator, "<integrator>", "dt", true);
+  }
+
+  // particles
+  const int n = int(particles.size());
+  if (n == 0)
+    throw r.error(r.line(root), "<scene> has no <particle>: a scene needs at least one particle");
+  scene.positions.setZero(n, 3);
+  scene.velocities.setZero(n, 3);
+  scene.masses.resize(n);
+  for (const Pending& p : particles) {
+    const std::string item = detail::FosssimReader::label(p.node, p.k);
+    r.check_attributes(p.node, item, {"m", "px", "py", "vx", "vy", "fixed"}, {"radius", "tag"});
+    scene.masses(p.k) = r.nonnegative(p.node, item, "m", true);
+    scene.positions(p.k, 0) = r.number(p.node, item, "px");
+    scene.positions(p.k, 1) = r.number(p.node, item, "py");
+    scene.velocities(p.k, 0) = r.number(p.node, item, "vx");
+    scene.velocities(p.k, 1) = r.number(p.node, item, "vy");
+    scene.radii.push_back(
+        r.nonnegative(p.node, item, "radius", false, FosssimScene::kDefaultRadius));
+    const std::string_view fixed =
+        detail::FosssimReader::trimmed(p.node.attribute("fixed").value());
+    if (fixed == "1")
+      scene.fixed.push_back(p.k);
+    else if (fixed != "0")
+      throw r.error(r.line(p.node), item, ": fixed = \"", p.node.attribute("fixed").value(),
+                    "\" must be 0 or 1");
+  }
+
+  // edges
+  scene.edges.resize(Eigen::Index(edges.size()), 2);
+  for (const Pending& e : edges) {
+    const std::string item = detail::FosssimReader::label(e.node, e.k);
+    r.check_attributes(e.node, item, {"i", "j"}, {"radius"});
+    const int i = r.index(e.node, item, "i", n, "particle");
+    const int j = r.index(e.node, item, "j", n, "particle");
+    if (i == j) throw r.error(r.line(e.node), item, " joins particle ", i, " to itself");
+    scene.edge_radii.push_back(
+        r.nonnegative(e.node, item, "radius", false, FosssimScene::kDefaultEdgeRadius));
+    scene.edges.row(e.k) << i, j;
+  }
+
+  // spring forces: at most one per edge, and at most one per pair of particles
+  std::map<int, int> spring_of_edge;                  // edge -> springforce
+  std::map<std::pair<int, int>, int> spring_of_pair;  // (min, max) particle -> springforce
+  for (const Pending& s : springs) {
+    const std::string item = detail::FosssimReader::label(s.node, s.k);
+    r.check_attributes(s.node, item, {"edge", "k", "l0"}, {"b"});
+    FosssimScene::SpringForce f;
+    f.edge = r.index(s.node, item, "edge", int(edges.size()), "edge");
+    f.k = r.nonnegative(s.node, item, "k", false);
+    f.l0 = r.nonnegative(s.node, item, "l0", false);
+    f.b = r.nonnegative(s.node, item, "b", false, 0.0);
+    if (const auto it = spring_of_edge.find(f.edge); it != spring_of_edge.end())
+      throw r.error(r.line(s.node), item, ": edge ", f.edge, " already has a spring (",
+                    detail::FosssimReader::label(s.node, it->second), " on line ",
+                    r.line(springs[std::size_t(it->second)].node), "); one <springforce> per edge");
+    const int a = scene.edges(f.edge, 0), b = scene.edges(f.edge, 1);
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    if (const auto it = spring_of_pair.find(key); it != spring_of_pair.end())
+      throw r.error(r.line(s.node), item, ": particles ", key.first, " and ", key.second,
+                    " are already joined by ", detail::FosssimReader::label(s.node, it->second),
+                    " on line ", r.line(springs[std::size_t(it->second)].node),
+                    " (through another edge); one spring per pair");
+    spring_of_edge.emplace(f.edge, s.k);
+    spring_of_pair.emplace(key, s.k);
+    scene.springs.push_back(f);
+  }
+
+  // gravitational pairs
+  for (const Pending& g : attractions) {
+    const std::string item = detail::FosssimReader::label(g.node, g.k);
+    r.check_attributes(g.node, item, {"i", "j", "G"}, {});
+    FosssimScene::Attraction a;
+    a.i = r.index(g.node, item, "i", n, "particle");
+    a.j = r.index(g.node, item, "j", n, "particle");
+    if (a.i == a.j) throw r.error(r.line(g.node), item, " attracts particle ", a.i, " to itself");
+    a.G = r.nonnegative(g.node, item, "G", false);
+    scene.attractions.push_back(a);
+  }
+  detail::parse_fosssim_theme2(r, scene, collision, detection);
+  for (const Pending& h : halfplanes) {
+    const std::string item = detail::FosssimReader::label(h.node, h.k);
+    r.check_attributes(h.node, item, {"px", "py", "nx", "ny"}, {});
+    FosssimScene::Halfplane plane;
+    plane.point << r.number(h.node, item, "px"), r.number(h.node, item, "py"), 0;
+    plane.normal << r.number(h.node, item, "nx"), r.number(h.node, item, "ny"), 0;
+    if (!(plane.normal.squaredNorm() > 0) || !std::isfinite(plane.normal.squaredNorm()))
+      throw r.error(r.line(h.node), item, ": the normal (nx, ny) = (",
+                    h.node.attribute("nx").value(), ", ", h.node.attribute("ny").value(),
+                    ") must be non-zero (and its square finite)");
+    scene.halfplanes.push_back(plane);
+  }
+  for (const Pending& v : vortices) {
+    const std::string item = detail::FosssimReader::label(v.node, v.k);
+    r.check_attributes(v.node, item, {"i", "j", "kbs", "kvc"}, {});
+    FosssimScene::Vortex f;
+    f.i = r.index(v.node, item, "i", n, "particle");
+    f.j = r.index(v.node, item, "j", n, "particle");
+    if (f.i == f.j)
+      throw r.error(r.line(v.node), item, " acts between particle ", f.i, " and itself");
+    f.kbs = r.number(v.node, item, "kbs");
+    f.kvc = r.number(v.node, item, "kvc");
+    scene.vortices.push_back(f);
+  }
+  return scene;
+}
+
+/// @brief Reads a FOSSSim XML scene (schema: io/fosssim_scene.hpp and docs/scenes.md), strictly.
+/// @param[in] path  the .xml file
+/// @return the scene, particles and edges in file order
+/// @throws Error whose message starts with `<path>:<line>: ` and names the element (`<particle>
+/// 3` is the fourth particle) for: XML that is not well-formed; a root other than one `<scene>`;
+/// an unknown element or attribute; a missing or repeated `<duration>` or `<integrator>`, a
+/// repeated `<collision>` or `<collisiondetection>`, an unknown integrator, collision or detection
+/// type, an attribute of `<collision>` its type does not read, COR outside [0, 1], maxiters not a
+/// whole number >= 0, a half-plane normal of zero; a missing required attribute; a value that is
+/// not a number or not finite; m <= 0, dt <= 0, a negative duration, k, l0, b, G or radius; fixed
+/// other than 0 or 1; an index that is not a whole number or out of range; an edge or pair from a
+/// particle to itself; two `<springforce>` on one edge or on one pair of particles. Naming the
+/// path when the file cannot be read.
+inline FosssimScene read_fosssim_scene(const std::filesystem::path& path) {
+  const std::string text = detail::read_text_file(path, "FOSSSim scene");
+  return parse_fosssim_scene(text, path.string());
+}
+
+}  // namespace massspring::io

@@ -1,0 +1,175 @@
+#pragma once
+/// @file
+/// @brief write_fosssim_scene(): a FOSSSim XML scene that read_fosssim_scene() reads back exactly.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "massspring/error.hpp"
+#include "massspring/io/detail/text_file.hpp"
+#include "massspring/io/fosssim/scene.hpp"
+#include "massspring/io/obj.hpp"
+
+namespace massspring::io {
+
+/// @brief Writes a scene that read_fosssim_scene() reads back exactly (numbers as the shortest
+/// decimal that parses to the same double), through `<path>.tmp` renamed over `path`.
+/// @throws Error when a position or velocity has z != 0 (the format is 2D), or an index is out
+/// of range; naming the path when it cannot be written.
+inline void write_fosssim_scene(const std::filesystem::path& path, const FosssimScene& scene) {
+  using detail::append_index;
+  using detail::append_number;
+  const int n = scene.num_particles();
+  if (scene.velocities.rows() != n || scene.masses.size() != n)
+    throw Error(detail::message(path.string(), ": scene has ", n, " positions but ",
+                                scene.velocities.rows(), " velocities and ", scene.masses.size(),
+                                " masses"));
+  for (int i = 0; i < n; ++i)
+    if (scene.positions(i, 2) != 0 || scene.velocities(i, 2) != 0)
+      throw Error(
+          detail::message(path.string(), ": particle ", i, " has z != 0: FOSSSim scenes are 2D"));
+  std::string out = "<scene>\n";
+  auto attribute = [&out](const char* name, double x) {
+    out += ' ';
+    out += name;
+    out += "=\"";
+    append_number(out, x);
+    out += '"';
+  };
+  auto escaped = [](const std::string& s) {
+    std::string e;
+    for (char c : s) {
+      if (c == '&')
+        e += "&amp;";
+      else if (c == '<')
+        e += "&lt;";
+      else if (c == '>')
+        e += "&gt;";
+      else if (c == '"')
+        e += "&quot;";
+      else
+        e += c;
+    }
+    return e;
+  };
+  if (!scene.description.empty())
+    out += "  <description text=\"" + escaped(scene.description) + "\"/>\n";
+  for (const std::string& tag : scene.tags) out += "  <scenetag tag=\"" + escaped(tag) + "\"/>\n";
+  out += "  <duration";
+  attribute("time", scene.duration);
+  out += "/>\n  <integrator type=\"";
+  out += to_string(scene.integrator);
+  out += '"';
+  attribute("dt", scene.dt);
+  out += "/>\n\n";
+  std::vector<bool> fixed(std::size_t(n), false);
+  for (int i : scene.fixed) {
+    if (i < 0 || i >= n)
+      throw Error(
+          detail::message(path.string(), ": fixed particle ", i, " out of range [0, ", n, ")"));
+    fixed[std::size_t(i)] = true;
+  }
+  if (!scene.radii.empty() && int(scene.radii.size()) != n)
+    throw Error(detail::message(path.string(), ": scene has ", n, " particles but ",
+                                scene.radii.size(), " radii"));
+  if (!scene.edge_radii.empty() && Eigen::Index(scene.edge_radii.size()) != scene.edges.rows())
+    throw Error(detail::message(path.string(), ": scene has ", scene.edges.rows(), " edges but ",
+                                scene.edge_radii.size(), " edge radii"));
+  if (scene.collision) {
+    const auto& c = *scene.collision;
+    out += "  <collision type=\"";
+    out += to_string(c.type);
+    out += '"';
+    const bool impulses = c.type == FosssimCollision::Simple ||
+                          c.type == FosssimCollision::ContinuousTime ||
+                          c.type == FosssimCollision::Hybrid;
+    const bool penalty = c.type == FosssimCollision::Penalty || c.type == FosssimCollision::Hybrid;
+    if (impulses) attribute("COR", c.cor);
+    if (penalty) {
+      attribute("k", c.k);
+      attribute("thickness", c.thickness);
+    }
+    if (c.type == FosssimCollision::Hybrid) {
+      out += " maxiters=\"";
+      append_index(out, c.max_iterations);
+      out += '"';
+    }
+    out += "/>\n";
+  }
+  if (scene.contest)
+    out += *scene.contest ? "  <collisiondetection type=\"contest\"/>\n"
+                          : "  <collisiondetection type=\"allpairs\"/>\n";
+  for (int i = 0; i < n; ++i) {
+    out += "  <particle";
+    attribute("m", scene.masses(i));
+    attribute("px", scene.positions(i, 0));
+    attribute("py", scene.positions(i, 1));
+    attribute("vx", scene.velocities(i, 0));
+    attribute("vy", scene.velocities(i, 1));
+    out += fixed[std::size_t(i)] ? " fixed=\"1\"" : " fixed=\"0\"";
+    if (scene.radius(i) != FosssimScene::kDefaultRadius) attribute("radius", scene.radius(i));
+    out += "/>\n";
+  }
+  for (Eigen::Index e = 0; e < scene.edges.rows(); ++e) {
+    out += "  <edge i=\"";
+    append_index(out, scene.edges(e, 0));
+    out += "\" j=\"";
+    append_index(out, scene.edges(e, 1));
+    out += '"';
+    if (scene.edge_radius(int(e)) != FosssimScene::kDefaultEdgeRadius)
+      attribute("radius", scene.edge_radius(int(e)));
+    out += "/>\n";
+  }
+  for (const auto& h : scene.halfplanes) {
+    out += "  <halfplane";
+    attribute("px", h.point(0));
+    attribute("py", h.point(1));
+    attribute("nx", h.normal(0));
+    attribute("ny", h.normal(1));
+    out += "/>\n";
+  }
+  for (const auto& s : scene.springs) {
+    out += "  <springforce edge=\"";
+    append_index(out, s.edge);
+    out += '"';
+    attribute("k", s.k);
+    attribute("l0", s.l0);
+    attribute("b", s.b);
+    out += "/>\n";
+  }
+  if (scene.gravity) {
+    out += "  <simplegravity";
+    attribute("fx", (*scene.gravity)(0));
+    attribute("fy", (*scene.gravity)(1));
+    out += "/>\n";
+  }
+  for (const auto& a : scene.attractions) {
+    out += "  <gravitationalforce i=\"";
+    append_index(out, a.i);
+    out += "\" j=\"";
+    append_index(out, a.j);
+    out += '"';
+    attribute("G", a.G);
+    out += "/>\n";
+  }
+  for (const auto& v : scene.vortices) {
+    out += "  <vortexforce i=\"";
+    append_index(out, v.i);
+    out += "\" j=\"";
+    append_index(out, v.j);
+    out += '"';
+    attribute("kbs", v.kbs);
+    attribute("kvc", v.kvc);
+    out += "/>\n";
+  }
+  if (scene.drag) {
+    out += "  <dragdamping";
+    attribute("b", *scene.drag);
+    out += "/>\n";
+  }
+  out += "</scene>\n";
+  detail::write_text_file_atomically(path, out);
+}
+
+}  // namespace massspring::io
