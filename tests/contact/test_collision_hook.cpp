@@ -7,6 +7,7 @@
 #include <massspring/contact/simple_impulse.hpp>
 #include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/backward_euler.hpp>
+#include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/integrators/forward_euler.hpp>
 #include <massspring/integrators/rk4.hpp>
 #include <massspring/integrators/symplectic_euler.hpp>
@@ -90,6 +91,8 @@ TEST_CASE("collision hook: every integrator calls the handler once per step and 
   massspring::BackwardEuler<System> linearized;
   linearized.options.mode = massspring::BackwardEulerMode::Linearized;
   check_hook(linearized);
+  massspring::FastMassSpring<System> local_global;
+  check_hook(local_global);
 }
 
 TEST_CASE("collision hook: a step with the simple handler allocates nothing after the first") {

@@ -11,9 +11,35 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <utility>
 
 namespace massspring::local_global {
+
+/// @brief rho, the spectral radius of the plain iteration G, from `iterations` trial iterations
+/// from x (buffers x and w, each `size` values of the free rows, both overwritten): the geometric
+/// mean ratio of the update norms |G(x_k) - x_k| over the second half. 0 when that is not in
+/// (0, 1). `it` gives `local_only(x, w)` (the local step) and `global(w)` (the global step).
+template <class Iteration, class Scalar>
+double estimate_spectral_radius(Iteration& it, Scalar* x, Scalar* w, Eigen::Index size,
+                                int iterations) {
+  using Buffer = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  const int half = iterations / 2;
+  double norm_half = 0, norm_last = 0;
+  for (int k = 0; k < iterations; ++k) {
+    it.local_only(x, w);
+    it.global(w);
+    if (k == half - 1 || k == iterations - 1) {
+      const double d = (Eigen::Map<const Buffer>(w, size) - Eigen::Map<const Buffer>(x, size))
+                           .template cast<double>()
+                           .norm();
+      (k == half - 1 ? norm_half : norm_last) = d;
+    }
+    std::swap(x, w);
+  }
+  const double rho = std::pow(norm_last / norm_half, 1.0 / double(iterations - half));
+  return std::isfinite(rho) && rho > 0 && rho < 1 ? rho : 0.0;
+}
 
 /// @brief The Chebyshev accelerator over four buffers of one step (see guarded_loop()).
 template <class Scalar>

@@ -60,6 +60,10 @@ namespace massspring {
 /// is not finite is reported in the StepReport, the system keeping its state. A zero-length
 /// spring keeps the direction it had at the end of the previous step.
 ///
+/// A collision handler on the system (MassSpringSystem::set_collision_handler) is applied to the
+/// end-of-step positions and velocities before they are committed, as the explicit integrators
+/// apply it: a response after the solve, not a constraint inside the iterations.
+///
 /// @tparam System a MassSpringSystem<Scalar, Storage>
 /// @tparam Cholesky_ the factorisation of Q: by default the Storage's (SparseCholesky or
 /// DenseCholesky); any type with the members storage/cholesky_concept.hpp requires works (e.g.
@@ -171,6 +175,7 @@ class FastMassSpring {
   struct Iteration {
     FastMassSpring* solver;
     double local(const Scalar* x, Scalar* w) { return solver->template local_step<true>(x, w); }
+    void local_only(const Scalar* x, Scalar* w) { solver->template local_step<false>(x, w); }
     void global(Scalar* w) { solver->global_step(w); }
     double energy(const Scalar* x) { return solver->energy_at(x); }
   };
@@ -275,6 +280,8 @@ class FastMassSpring {
     // One value more than the iterate's rows: the share pass loads the last row as four values.
     for (Buffer& b : buffers_) b.setZero(size + 1);
     if constexpr (kDouble) share_pass_.build(springs_, nx);
+    x_end_.resize(n, 3);  // the end-of-step state a collision handler sees (commit())
+    v_end_.resize(n, 3);
     anderson_.reserve(nr,
                       options.acceleration == Acceleration::Anderson ? options.anderson_window : 0);
     factored_ = true;
@@ -402,31 +409,18 @@ class FastMassSpring {
     return x;
   }
 
-  // Trial plain iterations from the prepared start; rho from the ratio of update norms over the
-  // second half. Uses buffers 0 and 1 (prepare() must run again afterwards).
+  // rho for Chebyshev, estimated from trial plain iterations from the prepared start (buffers 0
+  // and 1: prepare() must run again afterwards).
   void estimate_rho() {
-    const int iterations = options.chebyshev_estimate_iterations;
-    const int half = iterations / 2;
-    Scalar* x = buffers_[0].data();
-    Scalar* w = buffers_[1].data();
-    const Eigen::Index size = 3 * Eigen::Index(reduced_.nr);
-    double norm_half = 0, norm_last = 0;
-    for (int k = 0; k < iterations; ++k) {
-      local_step<false>(x, w);
-      global_step(w);
-      if (k == half - 1 || k == iterations - 1) {
-        const double d = (Eigen::Map<const Buffer>(w, size) - Eigen::Map<const Buffer>(x, size))
-                             .template cast<double>()
-                             .norm();
-        (k == half - 1 ? norm_half : norm_last) = d;
-      }
-      std::swap(x, w);
-    }
-    const double rho = std::pow(norm_last / norm_half, 1.0 / double(iterations - half));
-    rho_estimate_ = std::isfinite(rho) && rho > 0 && rho < 1 ? Scalar(rho) : Scalar(0);
+    Iteration it{this};
+    rho_estimate_ = Scalar(local_global::estimate_spectral_radius(
+        it, buffers_[0].data(), buffers_[1].data(), 3 * Eigen::Index(reduced_.nr),
+        options.chebyshev_estimate_iterations));
   }
 
-  // Writes the result into the system when it is finite (positions and the velocities they imply).
+  // Writes the result into the system when it is finite (positions and the velocities they imply),
+  // through the system's collision handler when it has one (contact/collision_handler.hpp: the
+  // end-of-step response the explicit integrators apply too).
   StepReport commit(System& system, const Scalar* x, StepReport& report) {
     auto& positions = system.positions();
     const Scalar inv_dt = Scalar(1) / dt_;
@@ -442,6 +436,23 @@ class FastMassSpring {
       }
     }
     auto& velocities = system.velocities();
+    if (system.collision_handler()) {
+      for (int r = 0; r < nx; ++r) {
+        const int i = reduced_.point[std::size_t(r)];
+        for (int c = 0; c < 3; ++c) {
+          x_end_(i, c) = x[3 * r + c];
+          v_end_(i, c) = (x[3 * r + c] - positions(i, c)) * inv_dt;
+        }
+      }
+      contact::handle_collisions(system, positions, velocities, x_end_, v_end_, dt_);
+      if (!x_end_.allFinite() || !v_end_.allFinite()) {
+        report.finite = false;
+        return report;
+      }
+      positions = x_end_;  // same sizes: no allocation
+      velocities = v_end_;
+      return report;
+    }
     for (int r = 0; r < nx; ++r) {
       const int i = reduced_.point[std::size_t(r)];
       for (int c = 0; c < 3; ++c) {
@@ -473,6 +484,7 @@ class FastMassSpring {
   Scalar drag_ = 0;                  // sum of the terms' uniform linear damping [N s/m]
   bool other_terms_ = false;         // the system has force terms other than that
   Points<Scalar> term_force_;        // their force at the step's start
+  Points<Scalar> x_end_, v_end_;     // the end-of-step state, for a collision handler
   local_global::Anderson<Scalar> anderson_;
 };
 
