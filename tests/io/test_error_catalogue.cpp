@@ -539,6 +539,10 @@ TEST_CASE("X17 collision, collisiondetection, halfplane and vortexforce (Theme 2
         "s.xml:5: <vortexforce> 0 acts between particle 1 and itself");
   CHECK(xml_error(xml_scene("<vortexforce i=\"0\" j=\"1\"/>\n")) ==
         "s.xml:5: <vortexforce> 0: missing required attribute \"kbs\"");
+  // A number that is not one, inside the half-plane's point (once an unfinished Eigen comma
+  // initializer: tests/data/fuzz/fuzz_fosssim_scene/halfplane-not-a-number.xml).
+  CHECK(xml_error(xml_scene("<halfplane px=\"0\" py=\"m1.0\" nx=\"0\" ny=\"1\"/>\n")) ==
+        "s.xml:5: <halfplane> 0: py = \"m1.0\" is not a number");
 }
 
 TEST_CASE("X16 missing or unreadable XML file") {

@@ -263,9 +263,9 @@ class BroadPhase {
         for (std::size_t t = u + 1; t < count; ++t) {
           const Entry& b = run_[t];
           // one branch for the six comparisons (& not &&): most pairs fail one of them, and
-          // which one is unpredictable
-          if (!((a.lo[0] <= b.hi[0]) & (b.lo[0] <= a.hi[0]) & (a.lo[1] <= b.hi[1]) &
-                (b.lo[1] <= a.hi[1]) & (a.lo[2] <= b.hi[2]) & (b.lo[2] <= a.hi[2])))
+          // which one is unpredictable (as ints: clang warns of & on bools)
+          if (!(int(a.lo[0] <= b.hi[0]) & int(b.lo[0] <= a.hi[0]) & int(a.lo[1] <= b.hi[1]) &
+                int(b.lo[1] <= a.hi[1]) & int(a.lo[2] <= b.hi[2]) & int(b.lo[2] <= a.hi[2])))
             continue;
           // report a pair once: in the cell holding the lower corner of the boxes' intersection
           if (linear(std::max(a.cell[0], b.cell[0]), std::max(a.cell[1], b.cell[1]),

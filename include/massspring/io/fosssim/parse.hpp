@@ -217,8 +217,11 @@ inline FosssimScene parse_fosssim_scene(const std::string& text, const std::stri
     const std::string item = detail::FosssimReader::label(h.node, h.k);
     r.check_attributes(h.node, item, {"px", "py", "nx", "ny"}, {});
     FosssimScene::Halfplane plane;
-    plane.point << r.number(h.node, item, "px"), r.number(h.node, item, "py"), 0;
-    plane.normal << r.number(h.node, item, "nx"), r.number(h.node, item, "ny"), 0;
+    // Read into locals first: a throw inside Eigen's comma initializer would leave it unfinished.
+    const double px = r.number(h.node, item, "px"), py = r.number(h.node, item, "py");
+    const double nx = r.number(h.node, item, "nx"), ny = r.number(h.node, item, "ny");
+    plane.point = Vector3<double>(px, py, 0);
+    plane.normal = Vector3<double>(nx, ny, 0);
     if (!(plane.normal.squaredNorm() > 0) || !std::isfinite(plane.normal.squaredNorm()))
       throw r.error(r.line(h.node), item, ": the normal (nx, ny) = (",
                     h.node.attribute("nx").value(), ", ", h.node.attribute("ny").value(),
