@@ -17,8 +17,8 @@
 #endif
 
 /// Fully unrolls the loop that follows (a fixed count over the lanes of a few springs), so that
-/// its arrays of registers stay in registers at -O2 too, where GCC 12 would keep the loop and put
-/// the arrays on the stack.
+/// its arrays of registers stay in registers at -O2 too (otherwise a compiler may keep the loop and
+/// put the arrays on the stack).
 #if defined(__clang__)
 #define MASSSPRING_UNROLL _Pragma("unroll")
 #elif defined(__GNUC__)
@@ -30,8 +30,8 @@
 #if defined(__GNUC__)
 /// A function the compiler must inline (the pieces of a hot loop, also into its AVX2 version).
 #define MASSSPRING_ALWAYS_INLINE __attribute__((always_inline)) inline
-/// The same for a lambda (after its parameter list): GCC 12 at -O2 calls the spring pass's
-/// per-pair lambda instead of inlining it, with its arrays in memory.
+/// The same for a lambda (after its parameter list): the spring pass's per-pair lambda must not
+/// be called with its arrays in memory.
 #define MASSSPRING_LAMBDA_ALWAYS_INLINE __attribute__((always_inline))
 /// A function the compiler must not inline: a hot loop called once per iteration from several
 /// places, compiled once instead of at each (the call costs nothing next to the loop).

@@ -16,7 +16,7 @@ namespace massspring::detail {
 
 /// @brief Appends a number as `std::ostream` writes it at precision 17 (17 significant digits).
 /// One function, not a template: every message shares it.
-inline void append_number(std::string& out, double x) {
+inline void append_message_number(std::string& out, double x) {
   std::ostringstream text;
   text.precision(17);
   text << x;
@@ -24,7 +24,7 @@ inline void append_number(std::string& out, double x) {
 }
 
 /// @brief Appends one part of a message: text as it is, a character, a number (integers exactly,
-/// floating point as append_number), anything else as its `operator<<` writes it.
+/// floating point as append_message_number), anything else as its `operator<<` writes it.
 template <class T>
 void append_part(std::string& out, const T& part) {
   if constexpr (std::is_convertible_v<const T&, std::string_view>) {
@@ -37,7 +37,7 @@ void append_part(std::string& out, const T& part) {
   } else if constexpr (std::is_integral_v<T>) {
     out += std::to_string(part);
   } else if constexpr (std::is_floating_point_v<T>) {
-    append_number(out, double(part));
+    append_message_number(out, double(part));
   } else {
     std::ostringstream text;
     text.precision(17);

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
-#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <limits>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/diagnostics/energy.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/step_report.hpp"
-#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

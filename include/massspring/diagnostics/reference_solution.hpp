@@ -13,12 +13,12 @@
 #include <string>
 #include <type_traits>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/diagnostics/accuracy.hpp"
 #include "massspring/diagnostics/energy.hpp"
 #include "massspring/diagnostics/stable_time_step.hpp"
 #include "massspring/error.hpp"
 #include "massspring/integrators/rk4.hpp"
-#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/forces/force_term.hpp"
-#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

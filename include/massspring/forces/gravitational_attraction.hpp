@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/forces/force_term.hpp"
 #include "massspring/forces/springs.hpp"
-#include "massspring/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

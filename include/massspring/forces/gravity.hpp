@@ -5,8 +5,8 @@
 
 #include <Eigen/Core>
 
-#include "massspring/forces/force_term.hpp"
 #include "massspring/detail/validate.hpp"
+#include "massspring/forces/force_term.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

@@ -2,8 +2,8 @@
 /// @file
 /// @brief LinearDrag: F_i = -beta v_i, the same coefficient for every point (not scaled by mass).
 
-#include "massspring/forces/force_term.hpp"
 #include "massspring/detail/validate.hpp"
+#include "massspring/forces/force_term.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

@@ -8,12 +8,12 @@
 #include <limits>
 
 #include "massspring/contact/collision_handler.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/detail/jacobian_assembly.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/linear_solver.hpp"
-#include "massspring/detail/validate.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
 

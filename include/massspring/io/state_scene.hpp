@@ -23,11 +23,8 @@
 /// damping, pins and their targets, positions, velocities, the force terms in order). Only the
 /// revision() differs: a loaded system is a new model.
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -103,31 +100,6 @@ void append_list(std::string& out, const Eigen::DenseBase<Derived>& v) {
     append_real(out, double(v(i)));
   }
   out += ']';
-}
-
-/// @brief Writes `text` to `<path>.tmp`, then renames it over `path`. When the rename fails, the
-/// temporary file is kept (it holds the whole text) and the message says where.
-inline void write_keeping_tmp(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw Error(
-          message(path.string(), ": cannot write ", tmp.string(), ": ", std::strerror(errno)));
-    out.write(text.data(), std::streamsize(text.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);  // incomplete: nothing worth keeping
-      throw Error(message(path.string(), ": cannot write ", tmp.string(), ": write failed"));
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec)
-    throw Error(message(path.string(), ": cannot rename ", tmp.string(), " to it (", ec.message(),
-                        "); the state is kept, whole, in ", tmp.string()));
 }
 
 }  // namespace detail
@@ -230,7 +202,7 @@ void write_scene(const System& system, const std::filesystem::path& path,
   }
   if (extras.run.is_object()) out += ",\n  \"run\": " + extras.run.dump();
   out += "\n}\n";
-  detail::write_keeping_tmp(path, out);
+  detail::write_text_file_atomically(path, out);
 }
 
 /// @brief True when `root` (a parsed JSON value) is a state scene: an object with the key

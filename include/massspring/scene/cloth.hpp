@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/scene/scene_description.hpp"
-#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

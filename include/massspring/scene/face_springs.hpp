@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/error.hpp"
 #include "massspring/detail/validate.hpp"
+#include "massspring/error.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

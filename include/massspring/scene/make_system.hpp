@@ -2,11 +2,11 @@
 /// @file
 /// @brief make_system(): a MassSpringSystem from a SceneDescription.
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/scene/face_springs.hpp"
 #include "massspring/scene/scene_description.hpp"
 #include "massspring/scene/voronoi_masses.hpp"
-#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

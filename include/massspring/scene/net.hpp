@@ -5,9 +5,9 @@
 
 #include <cmath>
 
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/scene/scene_description.hpp"
-#include "massspring/detail/validate.hpp"
 
 namespace massspring {
 

@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "massspring/error.hpp"
 #include "massspring/detail/validate.hpp"
+#include "massspring/error.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

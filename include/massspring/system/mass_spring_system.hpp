@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "massspring/contact/collision_handler.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
 #include "massspring/storage/storage.hpp"
-#include "massspring/detail/validate.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {

@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "massspring/contact/collision_handler.hpp"
+#include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/step_report.hpp"
-#include "massspring/detail/validate.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <system_error>
 
-#include "massspring/error.hpp"
 #include "massspring/detail/validate.hpp"
+#include "massspring/error.hpp"
 
 namespace massspring::io::detail {
 
@@ -37,8 +37,9 @@ inline std::string read_text_file(const std::filesystem::path& path, const char*
 
 /// @brief Writes `text` to `path` atomically: first to `<path>.tmp`, then renamed over `path`, so
 /// a reader never sees a half-written file.
-/// @throws Error naming the path when the file cannot be written or renamed (the temporary file is
-/// removed).
+/// @throws Error naming the path when the file cannot be written (the incomplete temporary file is
+/// removed) or renamed: then the temporary file, which holds the whole text, is kept and the
+/// message says where (nothing written is lost).
 inline void write_text_file_atomically(const std::filesystem::path& path, const std::string& text) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
@@ -57,11 +58,9 @@ inline void write_text_file_atomically(const std::filesystem::path& path, const 
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw Error(message(path.string(), ": cannot rename ", tmp.string(), " to it: ", ec.message()));
-  }
+  if (ec)
+    throw Error(message(path.string(), ": cannot rename ", tmp.string(), " to it (", ec.message(),
+                        "); the text is kept, whole, in ", tmp.string()));
 }
 
 }  // namespace massspring::io::detail
