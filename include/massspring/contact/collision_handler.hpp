@@ -86,17 +86,22 @@ class CollisionHandlerSlot {
   std::unique_ptr<CollisionHandler<Scalar>> h_;
 };
 
-/// @brief Applies the system's collision handler, if it has one, to the end-of-step state. The
-/// one call an integrator makes, after computing (x_end, v_end) from (x_start, v_start) and
-/// before committing them.
-/// @tparam System a MassSpringSystem (anything with collision_handler(), masses(), pinned())
+/// @brief Applies the system's collision response to the end-of-step state: its handler, if it
+/// has one, then its colliders (contact/colliders.hpp), which also take their end-of-step pose.
+/// The one call an integrator makes, after computing (x_end, v_end) from (x_start, v_start) and
+/// before committing them; once the step is committed, the integrator calls
+/// system.colliders().end_step().
+/// @tparam System a MassSpringSystem (anything with collision_handler(), colliders(), masses(),
+/// pinned())
 template <class System>
-void handle_collisions(const System& system, const typename System::PointsType& x_start,
+void handle_collisions(System& system, const typename System::PointsType& x_start,
                        const typename System::PointsType& v_start,
                        typename System::PointsType& x_end, typename System::PointsType& v_end,
                        typename System::Scalar dt) {
   if (auto* handler = system.collision_handler())
     handler->handle({x_start, v_start, x_end, v_end, dt, system.masses(), system.pinned()});
+  if (!system.colliders().empty())
+    system.colliders().respond(x_start, x_end, v_end, dt, system.masses(), system.pinned());
 }
 
 }  // namespace massspring::contact

@@ -149,7 +149,7 @@ class BackwardEuler {
     v_ = v0 + moved_ / h;
     for (std::size_t r = 0; r < pinned.size(); ++r)
       v_.row(pinned[r]) = (x_.row(pinned[r]) - x0.row(pinned[r])) / h;
-    if (system.collision_handler()) {
+    if (system.has_collision_response()) {
       contact::handle_collisions(system, x0, v0, x_, v_, h);
       for (std::size_t r = 0; r < pinned.size(); ++r) {  // an impact zone may have reset one
         x_.row(pinned[r]) = system.pin_targets().row(Eigen::Index(r));
@@ -160,6 +160,7 @@ class BackwardEuler {
     if (report.finite) {
       system.positions() = x_;
       system.velocities() = v_;
+      system.colliders().end_step();
     }
     return report;
   }

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "massspring/contact/colliders.hpp"
 #include "massspring/contact/collision_handler.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -286,6 +287,22 @@ class MassSpringSystem {
     return collision_handler_.get();
   }
 
+  // ---- obstacles (contact/collider.hpp, contact/colliders.hpp) -------------------------------
+
+  /// @brief Adds an obstacle (contact::Collider<Scalar>::plane(), sphere(), capsule(), box(),
+  /// mesh()) that every integrator keeps the points out of; returns its index in colliders().
+  /// Not a model change: no new revision, no re-factorisation.
+  int add_collider(contact::Collider<Scalar> collider) {
+    return colliders_.add(std::move(collider));
+  }
+  /// @brief The obstacles: move one, or change its material, between steps.
+  [[nodiscard]] contact::ColliderSet<Scalar>& colliders() { return colliders_; }
+  [[nodiscard]] const contact::ColliderSet<Scalar>& colliders() const { return colliders_; }
+  /// @brief True when a step has a collision response to apply (a handler or a collider).
+  [[nodiscard]] bool has_collision_response() const {
+    return collision_handler_.get() != nullptr || !colliders_.empty();
+  }
+
   /// @brief Identifies the model Q is built from: it changes, to a value no system had before,
   /// whenever masses, stiffness, springs, the pinned set or the force terms change. Copies share
   /// it.
@@ -403,6 +420,7 @@ class MassSpringSystem {
   std::vector<int> pinned_;
   ForceSet<Scalar> forces_;
   contact::CollisionHandlerSlot<Scalar> collision_handler_;
+  contact::ColliderSet<Scalar> colliders_;
   bool damped_ = false;
   PointsType pin_targets_ = PointsType(0, 3);
   PointsType positions_ = PointsType(0, 3);

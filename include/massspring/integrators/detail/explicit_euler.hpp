@@ -63,7 +63,7 @@ class ExplicitStepper {
       }
     };
     pin();
-    if (system.collision_handler()) {
+    if (system.has_collision_response()) {
       contact::handle_collisions(system, x0, system.velocities(), x_, v_, dt_);
       pin();  // a handler leaves pinned points alone; an impact zone may have reset one
     }
@@ -74,6 +74,7 @@ class ExplicitStepper {
     if (report.finite) {  // swap the buffers: no copy, no allocation
       system.positions().swap(x_);
       system.velocities().swap(v_);
+      system.colliders().end_step();
     }
     return report;
   }

@@ -21,6 +21,7 @@
 #include "massspring/forces/springs.hpp"
 #include "massspring/integrators/local_global/anderson.hpp"
 #include "massspring/integrators/local_global/chebyshev.hpp"
+#include "massspring/integrators/local_global/contact_projection.hpp"
 #include "massspring/integrators/local_global/guarded_loop.hpp"
 #include "massspring/integrators/local_global/inertial_term.hpp"
 #include "massspring/integrators/local_global/options.hpp"
@@ -60,9 +61,12 @@ namespace massspring {
 /// is not finite is reported in the StepReport, the system keeping its state. A zero-length
 /// spring keeps the direction it had at the end of the previous step.
 ///
-/// A collision handler on the system (MassSpringSystem::set_collision_handler) is applied to the
-/// end-of-step positions and velocities before they are committed, as the explicit integrators
-/// apply it: a response after the solve, not a constraint inside the iterations.
+/// Colliders (MassSpringSystem::add_collider, contact/colliders.hpp) act inside the iteration:
+/// each local step first projects the iterate out of them (with friction), so the springs see
+/// where contact leaves the points; the end-of-step state then gets the same response as in every
+/// other integrator (position, then velocity: restitution and friction). A collision handler on
+/// the system (MassSpringSystem::set_collision_handler) is applied to the end-of-step state only,
+/// as the explicit integrators apply it. Neither ever re-factorises Q.
 ///
 /// @tparam System a MassSpringSystem<Scalar, Storage>
 /// @tparam Cholesky_ the factorisation of Q: by default the Storage's (SparseCholesky or
@@ -174,8 +178,8 @@ class FastMassSpring {
   // What guarded_loop() calls.
   struct Iteration {
     FastMassSpring* solver;
-    double local(const Scalar* x, Scalar* w) { return solver->template local_step<true>(x, w); }
-    void local_only(const Scalar* x, Scalar* w) { solver->template local_step<false>(x, w); }
+    double local(Scalar* x, Scalar* w) { return solver->template local_step<true>(x, w); }
+    void local_only(Scalar* x, Scalar* w) { solver->template local_step<false>(x, w); }
     void global(Scalar* w) { solver->global_step(w); }
     double energy(const Scalar* x) { return solver->energy_at(x); }
   };
@@ -274,6 +278,7 @@ class FastMassSpring {
     const int nx = reduced_.nx;
     springs_.build(system, reduced_.row, nx);
     reduced_.couple(springs_);
+    contact_.build(system, reduced_);
     inertia_.build(system, reduced_, inv_dt2, drag_ / dt_);
 
     const Eigen::Index size = 3 * Eigen::Index(nx);
@@ -292,7 +297,7 @@ class FastMassSpring {
 
   // The step's constants (inertial prediction, the right-hand side's constant part, pin
   // targets), the starting iterate (buffer 0) and the current rest lengths.
-  void prepare(const System& system) {
+  void prepare(System& system) {
     if (other_terms_) {
       // Terms other than uniform damping (gravity, constant forces, attraction, spring damping,
       // the user's) at the step's start (x^t, v^t): constant over the step, so each iteration
@@ -310,6 +315,7 @@ class FastMassSpring {
     if (pins_ == PinMode::Exact)
       for (Buffer& b : buffers_) restore_pins(b.data());
     springs_.set_rest_lengths(system.rest_lengths());
+    contact_.prepare(system, dt_);
   }
 
   // Pinned rows (exact pins) back to their targets, after a solve or a scatter wrote into them.
@@ -320,11 +326,13 @@ class FastMassSpring {
     return inertia_.template start<Energy, Write>(x, w, reduced_);
   }
 
-  // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy. On the SIMD path
+  // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy. With colliders, x
+  // is first projected out of them (contact_projection.hpp). On the SIMD path
   // with a factorisation that reads a row source, only the springs' shares are computed and w is
   // left as it is: global_step() must follow before w is read.
   template <bool Energy>
-  MASSSPRING_NOINLINE double local_step(const Scalar* x, Scalar* w) {
+  MASSSPRING_NOINLINE double local_step(Scalar* x, Scalar* w) {
+    if (contact_.active()) contact_.apply(x);
 #ifdef MASSSPRING_HAVE_AVX2_PATH
     if constexpr (kDouble) {
       if (simd_) {
@@ -361,7 +369,7 @@ class FastMassSpring {
 
   // One whole iteration, w = G(x) = Q^-1 (rhs0 + A^T K D(x)), returning E(x) when Energy.
   template <bool Energy>
-  double iteration(const Scalar* x, Scalar* w) {
+  double iteration(Scalar* x, Scalar* w) {
     const double energy = local_step<Energy>(x, w);
     global_step(w);
     return energy;
@@ -436,7 +444,7 @@ class FastMassSpring {
       }
     }
     auto& velocities = system.velocities();
-    if (system.collision_handler()) {
+    if (system.has_collision_response()) {
       for (int r = 0; r < nx; ++r) {
         const int i = reduced_.point[std::size_t(r)];
         for (int c = 0; c < 3; ++c) {
@@ -451,6 +459,7 @@ class FastMassSpring {
       }
       positions = x_end_;  // same sizes: no allocation
       velocities = v_end_;
+      system.colliders().end_step();
       return report;
     }
     for (int r = 0; r < nx; ++r) {
@@ -486,6 +495,7 @@ class FastMassSpring {
   Points<Scalar> term_force_;        // their force at the step's start
   Points<Scalar> x_end_, v_end_;     // the end-of-step state, for a collision handler
   local_global::Anderson<Scalar> anderson_;
+  local_global::ContactProjection<Scalar> contact_;
 };
 
 }  // namespace massspring

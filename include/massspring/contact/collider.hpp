@@ -1,0 +1,388 @@
+#pragma once
+/// @file
+/// @brief Collider: an obstacle the points of a system cannot enter (a half-space, sphere,
+/// capsule, oriented box or static triangle mesh), its material (Coulomb friction, restitution,
+/// thickness) and its motion (a pose, a linear and an angular velocity). The response that uses
+/// it is in contact/colliders.hpp; docs/contact.md describes the model.
+///
+/// Frames. Each shape is defined in its own local frame, whose origin is the collider's reference
+/// point: the plane's point, the sphere's, box's and capsule's centre (the capsule's midpoint),
+/// the centre of a mesh's bounding box. The pose (R, t) maps local to world, x = R p + t; it
+/// starts at the identity rotation with t the reference point, so a new collider lies where its
+/// parameters say. A collider moves when the user sets its pose, or each step by its constant
+/// velocity v [m/s] and angular velocity w [rad/s] (about t): t += v dt, R = exp([w] dt) R. The
+/// velocity of the collider's surface at a world point x is v + w x (x - t); friction and
+/// restitution act on velocities relative to it.
+///
+/// Contact. A point x is in contact when its signed distance phi(x) from the surface (negative
+/// inside a solid) is below the thickness; the response moves it out to phi = thickness. A mesh
+/// is a two-sided surface, not a solid: phi is the unsigned distance to the nearest triangle, and
+/// a point whose straight path over the step crosses a triangle is caught (continuous detection)
+/// and put back on the side it came from.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <utility>
+
+#include "massspring/contact/point_segment.hpp"
+#include "massspring/contact/triangle_mesh.hpp"
+#include "massspring/detail/validate.hpp"
+#include "massspring/error.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring::contact {
+
+/// @brief The kind of a collider's shape.
+enum class ColliderShape { Plane, Sphere, Capsule, Box, Mesh };
+
+/// @brief A collider's name in messages and scenes: "plane", "sphere", "capsule", "box", "mesh".
+inline const char* to_string(ColliderShape shape) {
+  switch (shape) {
+    case ColliderShape::Plane:
+      return "plane";
+    case ColliderShape::Sphere:
+      return "sphere";
+    case ColliderShape::Capsule:
+      return "capsule";
+    case ColliderShape::Box:
+      return "box";
+    case ColliderShape::Mesh:
+      return "mesh";
+  }
+  return "?";
+}
+
+/// @brief A point's contact with one collider, in world coordinates.
+template <class Scalar>
+struct ColliderContact {
+  /// @brief thickness - phi(x) [m]: how far the point must move along `normal` to leave the
+  /// contact zone (> 0 inside it, <= 0 when it only touches within the tolerance).
+  Scalar depth = 0;
+  /// @brief Unit outward normal of the surface at the contact.
+  Vector3<Scalar> normal = Vector3<Scalar>::UnitZ();
+  /// @brief Velocity of the collider's surface at the point [m/s].
+  Vector3<Scalar> velocity = Vector3<Scalar>::Zero();
+};
+
+/// @brief An obstacle: shape, material and motion. Build one with the static functions plane(),
+/// sphere(), capsule(), box() and mesh(); set its material and motion with the setters, which
+/// validate their arguments (Error naming the parameter).
+template <class Scalar>
+class Collider {
+ public:
+  using V3 = Vector3<Scalar>;
+  using M3 = Eigen::Matrix<Scalar, 3, 3>;
+
+  /// @brief The half-space {x : (x - point) . normal >= 0} is free; the other side is solid.
+  /// The normal [any length > 0] is normalised.
+  static Collider plane(const V3& point, const V3& normal) {
+    check_finite(point, "plane: point");
+    check_finite(normal, "plane: normal");
+    const Scalar len = normal.norm();
+    if (!(len > 0)) throw Error("plane collider: the normal must not be zero");
+    Collider c(ColliderShape::Plane, point);
+    c.axis_ = normal / len;
+    return c;
+  }
+  /// @brief A solid ball of radius > 0 [m] about center [m].
+  static Collider sphere(const V3& center, Scalar radius) {
+    check_finite(center, "sphere: center");
+    check_positive(radius, "sphere collider: radius");
+    Collider c(ColliderShape::Sphere, center);
+    c.radius_ = radius;
+    return c;
+  }
+  /// @brief The solid points within radius > 0 [m] of the segment [a, b] (a = b is a sphere).
+  static Collider capsule(const V3& a, const V3& b, Scalar radius) {
+    check_finite(a, "capsule: a");
+    check_finite(b, "capsule: b");
+    check_positive(radius, "capsule collider: radius");
+    Collider c(ColliderShape::Capsule, (a + b) / 2);
+    c.axis_ = (b - a) / 2;  // local segment: [-axis_, +axis_]
+    c.radius_ = radius;
+    return c;
+  }
+  /// @brief A solid box with the given centre [m], half extents (each > 0) [m] along its axes,
+  /// and orientation: the unit quaternion (w, x, y, z) (normalised here; not zero).
+  static Collider box(const V3& center, const V3& half_extents,
+                      const Eigen::Matrix<Scalar, 4, 1>& wxyz = Eigen::Matrix<Scalar, 4, 1>(1, 0, 0,
+                                                                                            0)) {
+    check_finite(center, "box: center");
+    check_finite(half_extents, "box: half_extents");
+    for (int k = 0; k < 3; ++k) check_positive(half_extents(k), "box collider: half_extents");
+    if (!wxyz.allFinite() || !(wxyz.norm() > 0))
+      throw Error("box collider: rotation must be a finite, non-zero quaternion (w, x, y, z)");
+    Collider c(ColliderShape::Box, center);
+    c.axis_ = half_extents;
+    c.rotation_ = quaternion_matrix(wxyz / wxyz.norm());
+    c.end_rotation_ = c.rotation_;
+    return c;
+  }
+  /// @brief A static triangle mesh (vertices [m], triangles as 0-based indices), two-sided.
+  /// Throws Error for a degenerate mesh (see TriangleMesh).
+  static Collider mesh(Points<Scalar> vertices, Triangles triangles) {
+    if (vertices.rows() > 0 && vertices.allFinite()) {
+      const V3 center =
+          (vertices.colwise().minCoeff() + vertices.colwise().maxCoeff()).transpose() / 2;
+      vertices.rowwise() -= center.transpose();
+      Collider c(ColliderShape::Mesh, center);
+      c.mesh_ =
+          std::make_shared<const TriangleMesh<Scalar>>(std::move(vertices), std::move(triangles));
+      return c;
+    }
+    throw Error(vertices.rows() == 0 ? "mesh collider: no vertices"
+                                     : "mesh collider: a vertex is not finite");
+  }
+
+  [[nodiscard]] ColliderShape shape() const { return shape_; }
+
+  // ---- material ---------------------------------------------------------------------------------
+
+  /// @brief Coulomb friction coefficient, static = kinetic = mu (>= 0, finite; default 0).
+  Collider& set_friction(Scalar mu) { return set_friction(mu, mu); }
+  /// @brief Static and kinetic Coulomb coefficients (0 <= kinetic <= static, finite).
+  Collider& set_friction(Scalar mu_static, Scalar mu_kinetic) {
+    if (!(mu_static >= 0 && mu_kinetic >= 0) || !std::isfinite(double(mu_static)) ||
+        !std::isfinite(double(mu_kinetic)))
+      throw Error(massspring::detail::message(to_string(shape_),
+                                              " collider: friction must be finite and >= 0, got ",
+                                              mu_static, " and ", mu_kinetic));
+    if (mu_kinetic > mu_static)
+      throw Error(massspring::detail::message(to_string(shape_), " collider: kinetic friction ",
+                                              mu_kinetic, " exceeds static friction ", mu_static,
+                                              " (Coulomb: kinetic <= static)"));
+    mu_static_ = mu_static;
+    mu_kinetic_ = mu_kinetic;
+    return *this;
+  }
+  /// @brief Coefficient of restitution e in [0, 1] (default 0, inelastic): the normal velocity
+  /// relative to the collider after contact is -e times the one before.
+  Collider& set_restitution(Scalar e) {
+    if (!(e >= 0 && e <= 1))
+      throw Error(massspring::detail::message(to_string(shape_),
+                                              " collider: restitution must be in [0, 1], got ", e));
+    restitution_ = e;
+    return *this;
+  }
+  /// @brief Distance [m] from the surface at which contact starts (>= 0, finite; default 0).
+  Collider& set_thickness(Scalar thickness) {
+    if (!(thickness >= 0) || !std::isfinite(double(thickness)))
+      throw Error(massspring::detail::message(
+          to_string(shape_), " collider: thickness must be finite and >= 0, got ", thickness));
+    thickness_ = thickness;
+    return *this;
+  }
+  [[nodiscard]] Scalar static_friction() const { return mu_static_; }
+  [[nodiscard]] Scalar kinetic_friction() const { return mu_kinetic_; }
+  [[nodiscard]] Scalar restitution() const { return restitution_; }
+  [[nodiscard]] Scalar thickness() const { return thickness_; }
+
+  // ---- motion -----------------------------------------------------------------------------------
+
+  /// @brief Moves the collider to the pose (R, t): R a rotation (orthonormal, det +1, to 1e-6), t
+  /// the reference point's new position [m]; a box's R includes its orientation (the pose maps
+  /// its axes). Takes effect at once; no re-factorisation is ever needed. Friction sees the
+  /// collider's velocity (set_velocity), not the jump from one pose to the next.
+  Collider& set_pose(const M3& rotation, const V3& translation) {
+    check_finite(translation, "pose: translation");
+    const Scalar tol = std::max(Scalar(1e-6), 100 * std::numeric_limits<Scalar>::epsilon());
+    if (!rotation.allFinite() ||
+        !((rotation.transpose() * rotation - M3::Identity()).cwiseAbs().maxCoeff() <= tol) ||
+        !(rotation.determinant() > 0))
+      throw Error(massspring::detail::message(
+          to_string(shape_),
+          " collider: pose rotation must be a rotation matrix (R^T R = I, "
+          "det R = +1)"));
+    rotation_ = rotation;
+    translation_ = translation;
+    end_rotation_ = rotation;
+    end_translation_ = translation;
+    return *this;
+  }
+  /// @brief Constant linear velocity [m/s] of the reference point (default 0).
+  Collider& set_velocity(const V3& v) {
+    check_finite(v, "velocity");
+    velocity_ = v;
+    return *this;
+  }
+  /// @brief Constant angular velocity [rad/s] about the reference point (default 0).
+  Collider& set_angular_velocity(const V3& w) {
+    check_finite(w, "angular_velocity");
+    angular_velocity_ = w;
+    return *this;
+  }
+  [[nodiscard]] const M3& rotation() const { return rotation_; }
+  [[nodiscard]] const V3& translation() const { return translation_; }
+  [[nodiscard]] const V3& velocity() const { return velocity_; }
+  [[nodiscard]] const V3& angular_velocity() const { return angular_velocity_; }
+  /// @brief The mesh of a mesh collider (null for the others).
+  [[nodiscard]] const std::shared_ptr<const TriangleMesh<Scalar>>& triangle_mesh() const {
+    return mesh_;
+  }
+  /// @brief Local-frame parameters: the plane's unit normal, the capsule's half segment
+  /// (b - a) / 2, the box's half extents; the sphere's and capsule's radius.
+  [[nodiscard]] const V3& axis() const { return axis_; }
+  [[nodiscard]] Scalar radius() const { return radius_; }
+
+  /// @brief Sets the pose the collider will have at the end of a step of dt [s] (its velocities
+  /// applied); contact() uses it. Called by ColliderSet::begin_step().
+  void begin_step(Scalar dt) {
+    end_translation_ = translation_ + dt * velocity_;
+    end_rotation_ = rotation_exp(angular_velocity_ * dt) * rotation_;
+  }
+  /// @brief Makes the end-of-step pose the current one (after a successful step).
+  void end_step() {
+    rotation_ = end_rotation_;
+    translation_ = end_translation_;
+  }
+
+  /// @brief The contact of a point that moves from x_start (start of the step, collider at its
+  /// current pose) to x_end (end of the step, collider at its end pose): true, with c set, when
+  /// phi(x_end) < thickness + slop or (mesh) the path crosses a triangle.
+  bool contact(const V3& x_start, const V3& x_end, Scalar slop, ColliderContact<Scalar>& c) const {
+    const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
+    V3 n_local;
+    Scalar phi = 0;
+    switch (shape_) {
+      case ColliderShape::Plane:
+        phi = axis_.dot(p);
+        n_local = axis_;
+        break;
+      case ColliderShape::Sphere:
+        phi = p.norm() - radius_;
+        n_local = p.norm() > 0 ? V3(p / p.norm()) : V3::UnitZ();
+        break;
+      case ColliderShape::Capsule: {
+        const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
+        phi = d.distance - radius_;
+        n_local = d.distance > 0 ? V3(-d.n / d.distance) : perpendicular(axis_);
+        break;
+      }
+      case ColliderShape::Box:
+        phi = box_distance(p, n_local);
+        break;
+      case ColliderShape::Mesh:
+        return mesh_contact(x_start, p, slop, c);
+    }
+    if (!(phi < thickness_ + slop)) return false;
+    c.depth = thickness_ - phi;
+    c.normal = end_rotation_ * n_local;
+    c.velocity = surface_velocity(x_end);
+    return true;
+  }
+
+ private:
+  Collider(ColliderShape shape, const V3& reference) : shape_(shape), translation_(reference) {
+    end_translation_ = reference;
+  }
+
+  static void check_finite(const V3& v, const char* what) {
+    if (!v.allFinite())
+      throw Error(massspring::detail::message("collider ", what, " must be finite, got (", v(0),
+                                              ", ", v(1), ", ", v(2), ")"));
+  }
+  static void check_positive(Scalar x, const char* what) {
+    if (!(x > 0) || !std::isfinite(double(x)))
+      throw Error(massspring::detail::message(what, " must be finite and > 0, got ", x));
+  }
+
+  // The rotation matrix of a unit quaternion (w, x, y, z).
+  static M3 quaternion_matrix(const Eigen::Matrix<Scalar, 4, 1>& q) {
+    const Scalar w = q(0), x = q(1), y = q(2), z = q(3);
+    M3 r;
+    r << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
+        2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),   //
+        2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
+    return r;
+  }
+
+  // exp([theta]x) by Rodrigues' formula: I + sin|t| K + (1 - cos|t|) K^2, K the unit axis's
+  // cross-product matrix.
+  static M3 rotation_exp(const V3& theta) {
+    const Scalar angle = theta.norm();
+    if (!(angle > 0)) return M3::Identity();
+    const V3 k = theta / angle;
+    M3 kx;
+    kx << 0, -k(2), k(1), k(2), 0, -k(0), -k(1), k(0), 0;
+    return M3::Identity() + std::sin(angle) * kx + (1 - std::cos(angle)) * (kx * kx);
+  }
+
+  // A unit vector perpendicular to a (a point on a capsule's axis has no closest direction).
+  static V3 perpendicular(const V3& a) {
+    const V3 other = std::abs(a(0)) < std::abs(a(2)) ? V3::UnitX() : V3::UnitZ();
+    const V3 p = a.cross(other);
+    return p.norm() > 0 ? V3(p / p.norm()) : V3::UnitZ();
+  }
+
+  // Signed distance from the box (half extents axis_) and the outward normal, in the local frame:
+  // outside, the distance to the nearest surface point; inside, minus the distance to the nearest
+  // face, whose normal is returned.
+  Scalar box_distance(const V3& p, V3& n) const {
+    const V3 q = p.cwiseAbs() - axis_;
+    const V3 outside = q.cwiseMax(V3::Zero());
+    const Scalar out = outside.norm();
+    if (out > 0) {
+      n = outside.cwiseProduct(p.cwiseSign()) / out;
+      // A component of p that is exactly 0 has no sign: it lies within that face's span.
+      return out;
+    }
+    int k = 0;
+    const Scalar inside = q.maxCoeff(&k);
+    n = V3::Zero();
+    n(k) = p(k) < 0 ? Scalar(-1) : Scalar(1);
+    return inside;
+  }
+
+  V3 surface_velocity(const V3& x) const {
+    return velocity_ + angular_velocity_.cross(x - end_translation_);
+  }
+
+  // Mesh: continuous detection of the local path a -> b, then the closest point within the
+  // thickness. `b` is x_end in the end frame.
+  bool mesh_contact(const V3& x_start, const V3& b, Scalar slop, ColliderContact<Scalar>& c) const {
+    const V3 a = rotation_.transpose() * (x_start - translation_);
+    const TriangleMesh<Scalar>& mesh = *mesh_;
+    Scalar t = 0;
+    int tri = -1;
+    if (mesh.first_crossing(a, b, t, tri)) {
+      const V3 n = mesh.normal(tri), v0 = mesh.vertex(tri, 0);
+      const Scalar side_a = (a - v0).dot(n), side_b = (b - v0).dot(n);
+      // The side the point came from (a on the plane: the side opposite its motion).
+      const V3 ns = (side_a > 0 || (side_a == 0 && side_b < 0)) ? n : V3(-n);
+      // Back to that side, at the thickness and at least a few rounding units away, so that the
+      // next step knows the side.
+      const Scalar offset =
+          thickness_ + 64 * std::numeric_limits<Scalar>::epsilon() * (1 + b.cwiseAbs().maxCoeff());
+      c.depth = offset - (b - v0).dot(ns);
+      c.normal = end_rotation_ * ns;
+      c.velocity = surface_velocity(end_rotation_ * b + end_translation_);
+      return true;
+    }
+    if (!(thickness_ + slop > 0)) return false;
+    V3 q;
+    if (!mesh.closest_within(b, thickness_ + slop, q, tri)) return false;
+    const Scalar d = (b - q).norm();
+    V3 n = d > 0 ? V3((b - q) / d) : mesh.normal(tri);
+    if (d == 0 && (a - q).dot(n) < 0) n = -n;
+    c.depth = thickness_ - d;
+    c.normal = end_rotation_ * n;
+    c.velocity = surface_velocity(end_rotation_ * b + end_translation_);
+    return true;
+  }
+
+  ColliderShape shape_;
+  V3 axis_ = V3::Zero();
+  Scalar radius_ = 0;
+  std::shared_ptr<const TriangleMesh<Scalar>> mesh_;
+  Scalar mu_static_ = 0, mu_kinetic_ = 0, restitution_ = 0, thickness_ = 0;
+  M3 rotation_ = M3::Identity();
+  V3 translation_;
+  V3 velocity_ = V3::Zero(), angular_velocity_ = V3::Zero();
+  M3 end_rotation_ = M3::Identity();  // the pose at the end of the current step (begin_step())
+  V3 end_translation_;
+};
+
+}  // namespace massspring::contact

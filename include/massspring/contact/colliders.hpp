@@ -1,0 +1,179 @@
+#pragma once
+/// @file
+/// @brief ColliderSet: the obstacles of a system (MassSpringSystem::colliders()) and the contact
+/// response every integrator applies at the end of a step; FastMassSpring also projects its
+/// iterates with it inside the local-global iteration (docs/contact.md).
+///
+/// The response of a point that moves from x_s to x_e over a step of dt, with end velocity v_e,
+/// against a collider in contact (contact/collider.hpp: depth delta = thickness - phi(x_e),
+/// outward normal n, surface velocity u), colliders taken in the order they were added:
+///
+/// - Position (when delta > 0): x_e += delta n, then Coulomb friction at position level on the
+///   displacement relative to the surface, d = x_e - x_s - u dt (before the push), tangential part
+///   d_t: the point sticks (x_e -= d_t) when |d_t| <= mu_s delta, else slides back by
+///   mu_k delta along d_t (Macklin et al. 2014, "Unified particle physics for real-time
+///   applications", section 6.1).
+/// - Velocity (when the relative normal velocity v_n = (v_e - u) . n is < 0): the normal impulse
+///   per unit mass j = -(1 + e) v_n makes the relative normal velocity -e v_n; the tangential
+///   relative velocity v_t becomes 0 when |v_t| <= mu_s j (stick) and shrinks by mu_k j otherwise
+///   (Coulomb friction at velocity level: Bridson, Fedkiw and Anderson 2002, "Robust treatment of
+///   collisions, contact and friction for cloth animation", section 7.2).
+///
+/// For an integrator whose end position is x_s + dt v_e (symplectic and backward Euler, the
+/// local-global solver), the two agree: a point on a plane under gravity stays exactly where it
+/// is, and a block on an incline slides with a = g (sin t - mu cos t). Afterwards up to two rounds
+/// of normal pushes take a point out of any collider another one pushed it into. Pinned points
+/// are left alone.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "massspring/contact/collider.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring::contact {
+
+/// @brief The colliders of a system, in the order they were added.
+template <class Scalar>
+class ColliderSet {
+ public:
+  using V3 = Vector3<Scalar>;
+
+  /// @brief Adds a collider; returns its index.
+  int add(Collider<Scalar> collider) {
+    colliders_.push_back(std::move(collider));
+    impulses_.push_back(V3::Zero());
+    return int(colliders_.size()) - 1;
+  }
+  /// @brief Removes every collider.
+  void clear() {
+    colliders_.clear();
+    impulses_.clear();
+  }
+  [[nodiscard]] bool empty() const { return colliders_.empty(); }
+  [[nodiscard]] int size() const { return int(colliders_.size()); }
+  /// @brief Collider i (0 <= i < size()): set its pose, velocity or material between steps.
+  [[nodiscard]] Collider<Scalar>& operator[](int i) { return colliders_[std::size_t(i)]; }
+  [[nodiscard]] const Collider<Scalar>& operator[](int i) const {
+    return colliders_[std::size_t(i)];
+  }
+  [[nodiscard]] auto begin() const { return colliders_.begin(); }
+  [[nodiscard]] auto end() const { return colliders_.end(); }
+
+  /// @brief The impulse [N s] collider i gave the points in the last respond(): the sum over the
+  /// points of m (v_e after - v_e before) of its velocity response.
+  [[nodiscard]] const V3& impulse(int i) const { return impulses_[std::size_t(i)]; }
+
+  /// @brief Each collider's pose at the end of a step of dt [s] (used by the responses).
+  void begin_step(Scalar dt) {
+    for (auto& c : colliders_) c.begin_step(dt);
+  }
+  /// @brief Each collider moves to its end-of-step pose: called once a step succeeded.
+  void end_step() {
+    for (auto& c : colliders_) c.end_step();
+  }
+
+  /// @brief The end-of-step response (see the file comment) of every point not pinned, from the
+  /// start positions x_start to the end state (x_end, v_end), all #points by 3; masses [kg] weigh
+  /// the impulses impulse() reports; pinned is ascending. Calls begin_step(dt). Allocates nothing.
+  void respond(const Points<Scalar>& x_start, Points<Scalar>& x_end, Points<Scalar>& v_end,
+               Scalar dt, const Vector<Scalar>& masses, const std::vector<int>& pinned) {
+    begin_step(dt);
+    for (V3& j : impulses_) j.setZero();
+    std::size_t next_pin = 0;
+    for (int i = 0; i < int(x_start.rows()); ++i) {
+      if (next_pin < pinned.size() && pinned[next_pin] == i) {
+        ++next_pin;
+        continue;
+      }
+      const V3 xs = x_start.row(i).transpose();
+      V3 xe = x_end.row(i).transpose();
+      V3 ve = v_end.row(i).transpose();
+      respond_point(xs, xe, &ve, dt, masses(i));
+      x_end.row(i) = xe.transpose();
+      v_end.row(i) = ve.transpose();
+    }
+  }
+
+  /// @brief The position response of one point (3 coordinates each), x_end moved in place:
+  /// FastMassSpring's projection of an iterate. begin_step(dt) must have been called.
+  void project(const Scalar* x_start, Scalar* x_end, Scalar dt) const {
+    const V3 xs(x_start[0], x_start[1], x_start[2]);
+    V3 xe(x_end[0], x_end[1], x_end[2]);
+    if (push(xs, xe, nullptr, dt, 0, nullptr))
+      for (int c = 0; c < 3; ++c) x_end[c] = xe(c);
+  }
+
+ private:
+  // Contact tolerance: a point within a few rounding units of the surface touches it.
+  static Scalar slop(const V3& x, const Collider<Scalar>& c) {
+    return 16 * std::numeric_limits<Scalar>::epsilon() *
+           (1 + x.cwiseAbs().maxCoeff() + c.translation().cwiseAbs().maxCoeff() + c.thickness());
+  }
+
+  void respond_point(const V3& xs, V3& xe, V3* ve, Scalar dt, Scalar mass) {
+    push(xs, xe, ve, dt, mass, impulses_.data());
+  }
+
+  // The response of one point (velocity too when ve is not null); true when anything moved.
+  bool push(const V3& xs, V3& xe, V3* ve, Scalar dt, Scalar mass, V3* impulses) const {
+    bool moved = false;
+    ColliderContact<Scalar> k;
+    for (std::size_t ci = 0; ci < colliders_.size(); ++ci) {
+      const Collider<Scalar>& c = colliders_[ci];
+      if (!c.contact(xs, xe, slop(xe, c), k)) continue;
+      if (k.depth > 0) {
+        const V3 d = xe - xs - dt * k.velocity;
+        xe += k.depth * k.normal;
+        moved = true;
+        if (c.static_friction() > 0) {
+          const V3 d_t = d - d.dot(k.normal) * k.normal;
+          const Scalar len = d_t.norm();
+          if (len <= c.static_friction() * k.depth)
+            xe -= d_t;
+          else
+            xe -= (c.kinetic_friction() * k.depth / len) * d_t;
+        }
+      }
+      if (ve) {
+        const V3 vr = *ve - k.velocity;
+        const Scalar vn = vr.dot(k.normal);
+        if (vn < 0) {
+          const Scalar e = c.restitution();
+          const Scalar j = -(1 + e) * vn;
+          V3 vt = vr - vn * k.normal;
+          const Scalar len = vt.norm();
+          if (len <= c.static_friction() * j)
+            vt.setZero();
+          else
+            vt *= 1 - c.kinetic_friction() * j / len;
+          const V3 after = k.velocity - e * vn * k.normal + vt;
+          if (impulses) impulses[ci] += mass * (after - *ve);
+          *ve = after;
+          moved = true;
+        }
+      }
+    }
+    // A push out of one collider may have put the point into another: normal pushes only.
+    for (int round = 0; moved && round < 2 && colliders_.size() > 1; ++round) {
+      bool again = false;
+      for (const auto& c : colliders_)
+        if (c.contact(xs, xe, Scalar(0), k) && k.depth > 0) {
+          xe += k.depth * k.normal;
+          again = true;
+        }
+      if (!again) break;
+    }
+    return moved;
+  }
+
+  std::vector<Collider<Scalar>> colliders_;
+  std::vector<V3> impulses_;
+};
+
+}  // namespace massspring::contact
