@@ -85,6 +85,7 @@ class Collider {
     if (!(len > 0)) throw Error("plane collider: the normal must not be zero");
     Collider c(ColliderShape::Plane, point);
     c.axis_ = normal / len;
+    c.refresh();
     return c;
   }
   /// @brief A solid ball of radius > 0 [m] about center [m].
@@ -93,6 +94,7 @@ class Collider {
     check_positive(radius, "sphere collider: radius");
     Collider c(ColliderShape::Sphere, center);
     c.radius_ = radius;
+    c.refresh();
     return c;
   }
   /// @brief The solid points within radius > 0 [m] of the segment [a, b] (a = b is a sphere).
@@ -103,6 +105,7 @@ class Collider {
     Collider c(ColliderShape::Capsule, (a + b) / 2);
     c.axis_ = (b - a) / 2;  // local segment: [-axis_, +axis_]
     c.radius_ = radius;
+    c.refresh();
     return c;
   }
   /// @brief A solid box with the given centre [m], half extents (each > 0) [m] along its axes,
@@ -119,6 +122,7 @@ class Collider {
     c.axis_ = half_extents;
     c.rotation_ = quaternion_matrix(wxyz / wxyz.norm());
     c.end_rotation_ = c.rotation_;
+    c.refresh();
     return c;
   }
   /// @brief A static triangle mesh (vertices [m], triangles as 0-based indices), two-sided.
@@ -173,6 +177,7 @@ class Collider {
       throw Error(massspring::detail::message(
           to_string(shape_), " collider: thickness must be finite and >= 0, got ", thickness));
     thickness_ = thickness;
+    refresh();
     return *this;
   }
   [[nodiscard]] Scalar static_friction() const { return mu_static_; }
@@ -200,18 +205,21 @@ class Collider {
     translation_ = translation;
     end_rotation_ = rotation;
     end_translation_ = translation;
+    refresh();
     return *this;
   }
   /// @brief Constant linear velocity [m/s] of the reference point (default 0).
   Collider& set_velocity(const V3& v) {
     check_finite(v, "velocity");
     velocity_ = v;
+    refresh();
     return *this;
   }
   /// @brief Constant angular velocity [rad/s] about the reference point (default 0).
   Collider& set_angular_velocity(const V3& w) {
     check_finite(w, "angular_velocity");
     angular_velocity_ = w;
+    refresh();
     return *this;
   }
   [[nodiscard]] const M3& rotation() const { return rotation_; }
@@ -226,50 +234,71 @@ class Collider {
   /// (b - a) / 2, the box's half extents; the sphere's and capsule's radius.
   [[nodiscard]] const V3& axis() const { return axis_; }
   [[nodiscard]] Scalar radius() const { return radius_; }
+  /// @brief The collider's part of the contact tolerance [m]: a few rounding units of its
+  /// position and thickness (ColliderSet adds the point's).
+  [[nodiscard]] Scalar slop() const { return slop_; }
 
   /// @brief Sets the pose the collider will have at the end of a step of dt [s] (its velocities
   /// applied); contact() uses it. Called by ColliderSet::begin_step().
   void begin_step(Scalar dt) {
     end_translation_ = translation_ + dt * velocity_;
     end_rotation_ = rotation_exp(angular_velocity_ * dt) * rotation_;
+    // How far a point of the collider moves over the step (a mesh's path test).
+    motion_ = (end_translation_ - translation_).norm() + angular_velocity_.norm() * dt * bound_;
+    refresh();
   }
   /// @brief Makes the end-of-step pose the current one (after a successful step).
   void end_step() {
     rotation_ = end_rotation_;
     translation_ = end_translation_;
+    motion_ = 0;
+    refresh();
   }
 
   /// @brief The contact of a point that moves from x_start (start of the step, collider at its
   /// current pose) to x_end (end of the step, collider at its end pose): true, with c set, when
   /// phi(x_end) < thickness + slop or (mesh) the path crosses a triangle.
   bool contact(const V3& x_start, const V3& x_end, Scalar slop, ColliderContact<Scalar>& c) const {
-    const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
-    V3 n_local;
+    if (far(x_start, x_end, slop)) return false;
     Scalar phi = 0;
     switch (shape_) {
-      case ColliderShape::Plane:
-        phi = axis_.dot(p);
-        n_local = axis_;
+      case ColliderShape::Plane:  // world normal: no change of frame
+        phi = world_normal_.dot(x_end - end_translation_);
+        c.normal = world_normal_;
         break;
-      case ColliderShape::Sphere:
-        phi = p.norm() - radius_;
-        n_local = p.norm() > 0 ? V3(p / p.norm()) : V3::UnitZ();
-        break;
-      case ColliderShape::Capsule: {
-        const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
-        phi = d.distance - radius_;
-        n_local = d.distance > 0 ? V3(-d.n / d.distance) : perpendicular(axis_);
+      case ColliderShape::Sphere: {  // rotation-invariant
+        const V3 p = x_end - end_translation_;
+        const Scalar r = p.norm();
+        phi = r - radius_;
+        c.normal = r > 0 ? V3(p / r) : V3(end_rotation_.col(2));
         break;
       }
-      case ColliderShape::Box:
-        phi = box_distance(p, n_local);
+      case ColliderShape::Capsule: {
+        const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
+        const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
+        phi = d.distance - radius_;
+        c.normal = end_rotation_ * (d.distance > 0 ? V3(-d.n / d.distance) : perpendicular(axis_));
         break;
+      }
+      case ColliderShape::Box: {
+        const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
+        V3 n_local;
+        phi = box_distance(p, n_local);
+        c.normal = end_rotation_ * n_local;
+        break;
+      }
       case ColliderShape::Mesh:
-        return mesh_contact(x_start, p, slop, c);
+        return mesh_contact(x_start, end_rotation_.transpose() * (x_end - end_translation_), slop,
+                            c);
     }
     if (!(phi < thickness_ + slop)) return false;
     c.depth = thickness_ - phi;
-    c.normal = end_rotation_ * n_local;
+    // The nearest surface point may be on the far side (a point dragged past a sphere's centre
+    // would be pushed out of its bottom): when the push would go on along the point's path, or
+    // the point is deeper than half the solid's inner size, a point that came from outside
+    // leaves through the tangent plane where its path entered instead.
+    if (c.depth > 0 && (c.normal.dot(x_start - x_end) < 0 || c.depth > inner_ / 2))
+      entry_push(x_start, x_end, slop, c);
     c.velocity = surface_velocity(x_end);
     return true;
   }
@@ -277,6 +306,56 @@ class Collider {
  private:
   Collider(ColliderShape shape, const V3& reference) : shape_(shape), translation_(reference) {
     end_translation_ = reference;
+  }
+
+  // The quick rejection contact() starts with, in world coordinates at the end pose: a plane's
+  // world normal and offset, or a sphere about the reference point that holds the shape and its
+  // contact zone. `reach_` includes a margin far above any slop, so that it only filters.
+  void refresh() {
+    switch (shape_) {
+      case ColliderShape::Plane:
+        bound_ = 0;
+        inner_ = std::numeric_limits<Scalar>::infinity();
+        break;
+      case ColliderShape::Sphere:
+        bound_ = radius_;
+        inner_ = radius_;
+        break;
+      case ColliderShape::Capsule:
+        bound_ = axis_.norm() + radius_;
+        inner_ = radius_;
+        break;
+      case ColliderShape::Box:
+        bound_ = axis_.norm();
+        inner_ = axis_.minCoeff();
+        break;
+      case ColliderShape::Mesh:
+        bound_ = std::max(mesh_->lower().norm(), mesh_->upper().norm());
+        break;
+    }
+    const Scalar margin = std::sqrt(std::numeric_limits<Scalar>::epsilon()) *
+                          (1 + bound_ + thickness_ + end_translation_.cwiseAbs().maxCoeff());
+    world_normal_ = end_rotation_ * axis_;
+    offset_ = world_normal_.dot(end_translation_) + thickness_ + margin;
+    reach_ = bound_ + thickness_ + margin;
+    moving_ = !velocity_.isZero(0) || !angular_velocity_.isZero(0);
+    slop_ = 16 * std::numeric_limits<Scalar>::epsilon() *
+            (end_translation_.cwiseAbs().maxCoeff() + thickness_);
+  }
+
+  // True when no point of the path x_start -> x_end can be in contact (slop below the margin).
+  bool far(const V3& x_start, const V3& x_end, Scalar slop) const {
+    switch (shape_) {
+      case ColliderShape::Plane:
+        return world_normal_.dot(x_end) - offset_ > slop;
+      case ColliderShape::Mesh: {
+        // The whole path, against the hull of the mesh's bounding sphere over the step.
+        const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
+        return d.distance > reach_ + motion_ + slop;
+      }
+      default:
+        return (x_end - end_translation_).squaredNorm() > (reach_ + slop) * (reach_ + slop);
+    }
   }
 
   static void check_finite(const V3& v, const char* what) {
@@ -317,6 +396,54 @@ class Collider {
     return p.norm() > 0 ? V3(p / p.norm()) : V3::UnitZ();
   }
 
+  // phi and the outward normal of an analytic solid at a local point p.
+  Scalar local_phi(const V3& p, V3& n) const {
+    switch (shape_) {
+      case ColliderShape::Plane:
+        n = axis_;
+        return axis_.dot(p);
+      case ColliderShape::Sphere: {
+        const Scalar r = p.norm();
+        n = r > 0 ? V3(p / r) : V3::UnitZ();
+        return r - radius_;
+      }
+      case ColliderShape::Capsule: {
+        const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
+        n = d.distance > 0 ? V3(-d.n / d.distance) : perpendicular(axis_);
+        return d.distance - radius_;
+      }
+      case ColliderShape::Box:
+        return box_distance(p, n);
+      case ColliderShape::Mesh:
+        break;
+    }
+    n = V3::UnitZ();
+    return 0;
+  }
+
+  // For a deep point whose path started outside: the entry point e of the local path a -> b
+  // into the contact zone (bisection on phi - thickness, 48 halvings), and the push of x_end onto
+  // the tangent plane there (outside the solid, which is convex).
+  void entry_push(const V3& x_start, const V3& x_end, Scalar slop,
+                  ColliderContact<Scalar>& c) const {
+    const V3 a = rotation_.transpose() * (x_start - translation_);
+    const V3 b = end_rotation_.transpose() * (x_end - end_translation_);
+    V3 n;
+    if (!(local_phi(a, n) >= thickness_ - slop)) return;  // started inside: its nearest surface
+    Scalar lo = 0, hi = 1;
+    for (int k = 0; k < 48 && hi - lo > std::numeric_limits<Scalar>::epsilon(); ++k) {
+      const Scalar mid = (lo + hi) / 2;
+      if (local_phi(a + mid * (b - a), n) >= thickness_ - slop)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    const V3 e = a + lo * (b - a);
+    local_phi(e, n);
+    c.depth = (e - b).dot(n);
+    c.normal = end_rotation_ * n;
+  }
+
   // Signed distance from the box (half extents axis_) and the outward normal, in the local frame:
   // outside, the distance to the nearest surface point; inside, minus the distance to the nearest
   // face, whose normal is returned.
@@ -337,6 +464,7 @@ class Collider {
   }
 
   V3 surface_velocity(const V3& x) const {
+    if (!moving_) return V3::Zero();
     return velocity_ + angular_velocity_.cross(x - end_translation_);
   }
 
@@ -383,6 +511,11 @@ class Collider {
   V3 velocity_ = V3::Zero(), angular_velocity_ = V3::Zero();
   M3 end_rotation_ = M3::Identity();  // the pose at the end of the current step (begin_step())
   V3 end_translation_;
+  // The quick rejection (refresh()): plane normal and offset, bounding radius, reach.
+  V3 world_normal_ = V3::Zero();
+  Scalar offset_ = 0, bound_ = 0, reach_ = 0, motion_ = 0, slop_ = 0;
+  Scalar inner_ = 0;     // half the solid's smallest size: deeper, entry_push() decides
+  bool moving_ = false;  // a velocity or an angular velocity is not zero
 };
 
 }  // namespace massspring::contact

@@ -110,10 +110,10 @@ class ColliderSet {
   }
 
  private:
-  // Contact tolerance: a point within a few rounding units of the surface touches it.
-  static Scalar slop(const V3& x, const Collider<Scalar>& c) {
-    return 16 * std::numeric_limits<Scalar>::epsilon() *
-           (1 + x.cwiseAbs().maxCoeff() + c.translation().cwiseAbs().maxCoeff() + c.thickness());
+  // Contact tolerance: a point within a few rounding units of the surface touches it (units of
+  // the point's coordinates, and of the collider's position and thickness).
+  static Scalar point_slop(const V3& x) {
+    return 16 * std::numeric_limits<Scalar>::epsilon() * (1 + x.cwiseAbs().maxCoeff());
   }
 
   void respond_point(const V3& xs, V3& xe, V3* ve, Scalar dt, Scalar mass) {
@@ -123,14 +123,17 @@ class ColliderSet {
   // The response of one point (velocity too when ve is not null); true when anything moved.
   bool push(const V3& xs, V3& xe, V3* ve, Scalar dt, Scalar mass, V3* impulses) const {
     bool moved = false;
+    std::size_t pushed = colliders_.size();  // the collider that pushed the point last
     ColliderContact<Scalar> k;
+    const Scalar slop = point_slop(xe);
     for (std::size_t ci = 0; ci < colliders_.size(); ++ci) {
       const Collider<Scalar>& c = colliders_[ci];
-      if (!c.contact(xs, xe, slop(xe, c), k)) continue;
+      if (!c.contact(xs, xe, slop + c.slop(), k)) continue;
       if (k.depth > 0) {
         const V3 d = xe - xs - dt * k.velocity;
         xe += k.depth * k.normal;
         moved = true;
+        pushed = ci;
         if (c.static_friction() > 0) {
           const V3 d_t = d - d.dot(k.normal) * k.normal;
           const Scalar len = d_t.norm();
@@ -159,15 +162,16 @@ class ColliderSet {
         }
       }
     }
-    // A push out of one collider may have put the point into another: normal pushes only.
-    for (int round = 0; moved && round < 2 && colliders_.size() > 1; ++round) {
-      bool again = false;
-      for (const auto& c : colliders_)
-        if (c.contact(xs, xe, Scalar(0), k) && k.depth > 0) {
+    // A push out of one collider may have put the point into another: normal pushes only, up to
+    // two rounds (the collider that pushed last has just left the point on its surface).
+    for (int round = 0; pushed < colliders_.size() && round < 2 && colliders_.size() > 1; ++round) {
+      const std::size_t last = pushed;
+      pushed = colliders_.size();
+      for (std::size_t ci = 0; ci < colliders_.size(); ++ci)
+        if (ci != last && colliders_[ci].contact(xs, xe, Scalar(0), k) && k.depth > 0) {
           xe += k.depth * k.normal;
-          again = true;
+          pushed = ci;
         }
-      if (!again) break;
     }
     return moved;
   }

@@ -42,4 +42,26 @@ inline ClothOptions flag_recipe() {
   return flag;
 }
 
+/// @brief The cloth of the drape (issue 22's cost figure, the demo): 81 x 81 points over
+/// 1 m x 1 m, lying flat in the x-z plane at y = 0 (y is up), one diagonal per cell, skip-one
+/// bending springs, nothing pinned, k = 1000 N/m, lumped Voronoi masses (1 kg in all): the
+/// curtain's cloth, laid down. drape_obstacles() gives what it falls on.
+inline ClothOptions drape_recipe() {
+  ClothOptions drape = curtain_recipe();
+  drape.plane = ClothPlane::Horizontal;
+  drape.pins = ClothPins::None;
+  return drape;
+}
+
+/// @brief What the drape falls on, as (kind, parameters) a scene or a program turns into
+/// colliders: a sphere of radius 0.25 m centred 0.3 m below the cloth's centre, and a floor
+/// (plane, normal +y) 0.6 m below the cloth; Coulomb friction 0.3 on both.
+struct DrapeObstacles {
+  double sphere_center[3] = {0.5, -0.3, 0.5};
+  double sphere_radius = 0.25;
+  double floor_point[3] = {0.0, -0.6, 0.0};
+  double floor_normal[3] = {0.0, 1.0, 0.0};
+  double friction = 0.3;
+};
+
 }  // namespace massspring

@@ -112,7 +112,8 @@ class FastMassSpring {
     StepReport report;
     if (!factored_ || system.revision() != revision_ || system.num_points() != reduced_.n ||
         options.pins != pins_ || (pins_ == PinMode::Penalty && options.penalty_weight != weight_) ||
-        options.ordering != ordering_) {
+        options.ordering != ordering_ || system.colliders().empty() == with_contact_ ||
+        (with_contact_ && options.contact_weight != contact_weight_)) {
       report.refactorized = true;
       if (!build(system)) {
         report.factorization_failed = true;
@@ -267,7 +268,11 @@ class FastMassSpring {
       else
         other_terms_ = true;
     }
-    q_ = reduced_.template assemble<Traits>(system, exact, inv_dt2, drag_ / dt_, weight_);
+    // Colliders: the contact term's weight alpha m / dt^2 on Q's diagonal (contact_projection.hpp).
+    with_contact_ = !system.colliders().empty();
+    contact_weight_ = with_contact_ ? options.contact_weight : Scalar(0);
+    q_ = reduced_.template assemble<Traits>(system, exact, inv_dt2, drag_ / dt_, weight_,
+                                            1 + contact_weight_);
     const int n = reduced_.n, nr = reduced_.nr;
     term_force_.setZero(other_terms_ ? n : 0, 3);
     apply_threads();
@@ -278,7 +283,7 @@ class FastMassSpring {
     const int nx = reduced_.nx;
     springs_.build(system, reduced_.row, nx);
     reduced_.couple(springs_);
-    contact_.build(system, reduced_);
+    contact_.build(system, reduced_, contact_weight_, inv_dt2);
     inertia_.build(system, reduced_, inv_dt2, drag_ / dt_);
 
     const Eigen::Index size = 3 * Eigen::Index(nx);
@@ -315,7 +320,7 @@ class FastMassSpring {
     if (pins_ == PinMode::Exact)
       for (Buffer& b : buffers_) restore_pins(b.data());
     springs_.set_rest_lengths(system.rest_lengths());
-    contact_.prepare(system, dt_);
+    contact_.prepare(system, dt_, inertia_.rhs0);
   }
 
   // Pinned rows (exact pins) back to their targets, after a solve or a scatter wrote into them.
@@ -332,12 +337,12 @@ class FastMassSpring {
   // left as it is: global_step() must follow before w is read.
   template <bool Energy>
   MASSSPRING_NOINLINE double local_step(Scalar* x, Scalar* w) {
-    if (contact_.active()) contact_.apply(x);
+    const double contact = contact_.active() ? contact_.apply(x, inertia_.rhs0) : 0.0;
 #ifdef MASSSPRING_HAVE_AVX2_PATH
     if constexpr (kDouble) {
       if (simd_) {
         double energy = 0;
-        if constexpr (Energy) energy = start_rhs<true, false>(x, nullptr);
+        if constexpr (Energy) energy = contact + start_rhs<true, false>(x, nullptr);
         energy += share_pass_.template run<Energy>(x, springs_);
         if (!assembled_in_solve_) {
           const local_global::ShareRows<Scalar> rhs = share_pass_.rows(inertia_.rhs0.data());
@@ -347,7 +352,7 @@ class FastMassSpring {
       }
     }
 #endif
-    const double quadratic = start_rhs<Energy>(x, w);
+    const double quadratic = contact + start_rhs<Energy>(x, w);
     return quadratic + springs_.template pass<true, Energy>(x, w, reduced_.nx);
   }
 
@@ -377,13 +382,14 @@ class FastMassSpring {
 
   // E at x without touching any right-hand side (and recording the springs' directions).
   MASSSPRING_NOINLINE double energy_at(const Scalar* x) {
+    const double contact = contact_.active() ? contact_.energy(x) : 0.0;
 #ifdef MASSSPRING_HAVE_AVX2_PATH
     if constexpr (kDouble)
       if (simd_)
-        return start_rhs<true, false>(x, nullptr) +
+        return contact + start_rhs<true, false>(x, nullptr) +
                share_pass_.template run<true, false>(x, springs_);
 #endif
-    return start_rhs<true, false>(x, nullptr) +
+    return contact + start_rhs<true, false>(x, nullptr) +
            springs_.template pass<false, true>(x, nullptr, reduced_.nx);
   }
 
@@ -495,7 +501,9 @@ class FastMassSpring {
   Points<Scalar> term_force_;        // their force at the step's start
   Points<Scalar> x_end_, v_end_;     // the end-of-step state, for a collision handler
   local_global::Anderson<Scalar> anderson_;
-  local_global::ContactProjection<Scalar> contact_;
+  local_global::ContactProjection<Scalar> contact_;  // the contact term (colliders)
+  bool with_contact_ = false;                        // Q was built for a system with colliders
+  Scalar contact_weight_ = 0;                        // the contact weight alpha Q carries
 };
 
 }  // namespace massspring

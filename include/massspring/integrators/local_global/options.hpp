@@ -62,8 +62,9 @@ enum class FillOrdering {
   NestedDissection,
 };
 
-/// @brief Options of FastMassSpring. Changing `pins`, `penalty_weight` or `ordering` makes the
-/// next step factorise again; the others take effect at the next step for free.
+/// @brief Options of FastMassSpring. Changing `pins`, `penalty_weight`, `ordering` or (for a
+/// system with colliders) `contact_weight` makes the next step factorise again; the others take
+/// effect at the next step for free.
 template <class Scalar>
 struct FastMassSpringOptions {
   /// @brief Most local-global iterations (global solves) per step (>= 1). Default 50, as the
@@ -76,6 +77,14 @@ struct FastMassSpringOptions {
   PinMode pins = PinMode::Exact;
   /// @brief Penalty weight w for PinMode::Penalty [N/m], > 0. Default 1e10 (the seed's).
   Scalar penalty_weight = Scalar(1e10);
+  /// @brief Weight of the contact term inside the iteration, relative to the inertia: each
+  /// unknown point i gets the projective-dynamics term alpha m_i / (2 dt^2) |x_i - P(x_i)|^2, P the
+  /// projection out of the system's colliders (local_global/contact_projection.hpp), so the
+  /// springs and the global step see contact. Dimensionless, finite, >= 0; default 1. 0 leaves
+  /// contact to the end-of-step response alone. Used only when the system has colliders (Q then
+  /// carries (1 + alpha) m / dt^2 on its diagonal); larger holds contact points more firmly within
+  /// the iterations and slows the convergence of the rest.
+  Scalar contact_weight = Scalar(1);
   /// @brief A force applied to every point [N], whatever its mass, in addition to the system's
   /// force terms (the same as a ConstantForce term). The assignment's scenes use (0, -9.8, 0).
   /// Default zero. Deprecated: add `ConstantForce` to the system instead (the same trajectory, bit
@@ -147,6 +156,10 @@ void check_options(const FastMassSpringOptions<Scalar>& options, bool ordered, b
     throw Error(
         detail::message("FastMassSpring: options.penalty_weight must be finite and > 0, got ",
                         options.penalty_weight));
+  if (!(std::isfinite(options.contact_weight) && options.contact_weight >= 0))
+    throw Error(
+        detail::message("FastMassSpring: options.contact_weight must be finite and >= 0, got ",
+                        options.contact_weight));
   if (std::is_same_v<Scalar, float> && options.pins == PinMode::Penalty &&
       !options.allow_float_penalty)
     throw Error(detail::message(

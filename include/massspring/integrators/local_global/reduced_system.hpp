@@ -37,11 +37,12 @@ struct ReducedSystem {
   std::vector<Coupling> coupling;
 
   /// @brief Numbers the unknowns and assembles Q from triplets (duplicates summed):
-  /// A^T K A over the springs, then m_i / dt^2 + drag_diagonal on each unknown's diagonal, then
-  /// `weight` on each pinned point's diagonal (penalty pins). Allocates.
+  /// A^T K A over the springs, then mass_scale m_i / dt^2 + drag_diagonal on each unknown's
+  /// diagonal (mass_scale 1, or 1 + the contact weight), then `weight` on each pinned point's
+  /// diagonal (penalty pins). Allocates.
   template <class Traits, class System>
   typename Traits::Matrix assemble(const System& system, bool exact, Scalar inv_dt2,
-                                   Scalar drag_diagonal, Scalar weight) {
+                                   Scalar drag_diagonal, Scalar weight, Scalar mass_scale = 1) {
     using Triplet = typename Traits::Triplet;
     n = system.num_points();
     const int m = system.num_springs();
@@ -69,7 +70,7 @@ struct ReducedSystem {
       }
     }
     for (int r = 0; r < nr; ++r)
-      t.emplace_back(r, r, mass(free[std::size_t(r)]) * inv_dt2 + drag_diagonal);
+      t.emplace_back(r, r, mass(free[std::size_t(r)]) * inv_dt2 * mass_scale + drag_diagonal);
     if (!exact)
       for (int p : system.pinned()) t.emplace_back(p, p, weight);
     return Traits::from_triplets(nr, nr, t);
