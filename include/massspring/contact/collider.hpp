@@ -255,6 +255,22 @@ class Collider {
     refresh();
   }
 
+  /// @brief True when no point of the path x_start -> x_end can be in contact: a quick test with a
+  /// margin far above any rounding (contact() starts with it; slop adds to the margin).
+  template <class A, class B>
+  [[nodiscard]] bool far(const A& x_start, const B& x_end, Scalar slop) const {
+    switch (shape_) {
+      case ColliderShape::Plane:
+        return world_normal_.dot(x_end) - offset_ > slop;
+      case ColliderShape::Mesh: {
+        // The whole path, against the hull of the mesh's bounding sphere over the step.
+        const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
+        return d.distance > reach_ + motion_ + slop;
+      }
+      default:
+        return (x_end - end_translation_).squaredNorm() > (reach_ + slop) * (reach_ + slop);
+    }
+  }
   /// @brief The contact of a point that moves from x_start (start of the step, collider at its
   /// current pose) to x_end (end of the step, collider at its end pose): true, with c set, when
   /// phi(x_end) < thickness + slop or (mesh) the path crosses a triangle.
@@ -343,20 +359,7 @@ class Collider {
             (end_translation_.cwiseAbs().maxCoeff() + thickness_);
   }
 
-  // True when no point of the path x_start -> x_end can be in contact (slop below the margin).
-  bool far(const V3& x_start, const V3& x_end, Scalar slop) const {
-    switch (shape_) {
-      case ColliderShape::Plane:
-        return world_normal_.dot(x_end) - offset_ > slop;
-      case ColliderShape::Mesh: {
-        // The whole path, against the hull of the mesh's bounding sphere over the step.
-        const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
-        return d.distance > reach_ + motion_ + slop;
-      }
-      default:
-        return (x_end - end_translation_).squaredNorm() > (reach_ + slop) * (reach_ + slop);
-    }
-  }
+
 
   static void check_finite(const V3& v, const char* what) {
     if (!v.allFinite())

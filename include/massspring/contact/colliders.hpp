@@ -93,6 +93,7 @@ class ColliderSet {
       }
       const V3 xs = x_start.row(i).transpose();
       V3 xe = x_end.row(i).transpose();
+      if (!near(xs, xe)) continue;
       V3 ve = v_end.row(i).transpose();
       respond_point(xs, xe, &ve, dt, masses(i));
       x_end.row(i) = xe.transpose();
@@ -103,10 +104,20 @@ class ColliderSet {
   /// @brief The position response of one point (3 coordinates each), x_end moved in place:
   /// FastMassSpring's projection of an iterate. begin_step(dt) must have been called.
   void project(const Scalar* x_start, Scalar* x_end, Scalar dt) const {
-    const V3 xs(x_start[0], x_start[1], x_start[2]);
-    V3 xe(x_end[0], x_end[1], x_end[2]);
-    if (push(xs, xe, nullptr, dt, 0, nullptr))
-      for (int c = 0; c < 3; ++c) x_end[c] = xe(c);
+    const Eigen::Map<const V3> xs(x_start);
+    const Eigen::Map<const V3> xe(x_end);
+    if (!near(xs, xe)) return;  // most points: a few flops each
+    V3 moved = xe;
+    if (push(xs, moved, nullptr, dt, 0, nullptr))
+      for (int c = 0; c < 3; ++c) x_end[c] = moved(c);
+  }
+
+  /// @brief False when the path x_start -> x_end is far from every collider (Collider::far()).
+  template <class A, class B>
+  [[nodiscard]] bool near(const A& x_start, const B& x_end) const {
+    for (const auto& c : colliders_)
+      if (!c.far(x_start, x_end, Scalar(0))) return true;
+    return false;
   }
 
  private:
