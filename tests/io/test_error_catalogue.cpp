@@ -154,7 +154,7 @@ TEST_CASE("J4 missing required key") {
 
 TEST_CASE("J5 unknown, repeated or unsupported key") {
   const JsonScene unknown(R"({"obj": "tri.obj", "b": [1], "k": 10, "wind": 1})");
-  CHECK(unknown.error() == unknown.name() + ": unknown key \"wind\" (expected obj, b, k, m, png)");
+  CHECK(unknown.error() == unknown.name() + ": unknown key \"wind\" (expected obj, b, k, m, png, colliders)");
   const JsonScene twice(R"({"obj": "tri.obj", "b": [1], "k": 10, "k": 20})");
   CHECK(twice.error() == twice.name() + ": key \"k\" appears twice");
   const JsonScene bc(R"({"obj": "tri.obj", "b": [1], "k": 10, "bc": [[0, 0, 0]]})");
