@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
       (argc == 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help"))) {
     std::cerr << "usage: massspring-make-scenes [folder [xml_folder]]\n"
                  "  (default: examples/scenes examples/scenes_xml)\n"
-                 "Writes chain, net, flag and curtain (.json + .obj) into folder and orbit,\n"
+                 "Writes chain, net, flag, curtain, drape, table, tilted, pole and mesh\n"
+                 "(.json + .obj) into folder and orbit,\n"
                  "cantilever, shrinking_chain and damping_series (.xml) into xml_folder.\n";
     return argc > 3 ? 2 : 0;
   }
@@ -31,7 +32,8 @@ int main(int argc, char** argv) {
       std::cout
           << json.string() << ": " << scene.vertices.rows() << " points, "
           << massspring::face_springs(int(scene.vertices.rows()), scene.faces, scene.edges).rows()
-          << " springs, " << scene.pinned.size() << " pinned\n";
+          << " springs, " << scene.pinned.size() << " pinned, " << scene.colliders.size()
+          << " colliders\n";
     }
     std::filesystem::create_directories(xml_folder);
     for (const auto& [stem, scene] : massspring::examples::project_fosssim_scenes()) {

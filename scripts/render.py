@@ -14,10 +14,15 @@ length against time (frame number times --frame-time seconds) for the first FRAM
 With --dt (the time step: frame_NNNNN.obj is at t = NNNNN x dt) panels are titled with the time in
 seconds, and --until T spreads the PNG's panels over 0..T s (where the motion is) instead of the
 whole run. In 3D, points that never move (pinned) are marked, and the axes are labelled in metres.
+--scene SCENE.json draws the scene's "colliders" (docs/scenes.md) in grey under the cloth: planes,
+spheres, capsules, boxes and meshes, moved by their velocities to each frame's time (with --dt;
+without it they are drawn where the scene puts them).
 Needs python3-matplotlib (Debian).
 """
 
 import argparse
+import json
+import math
 import pathlib
 import sys
 
@@ -55,14 +60,138 @@ def read_obj(path):
     return vertices, polygons, edges
 
 
+def rotation(w, t):
+    """exp([w] t) (Rodrigues): the rotation by |w| t about w, as rows."""
+    angle = math.sqrt(sum(c * c for c in w)) * t
+    if angle == 0:
+        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    k = [c * t / angle for c in w]
+    s, c = math.sin(angle), 1 - math.cos(angle)
+    x, y, z = k
+    return [[1 - c * (y * y + z * z), -s * z + c * x * y, s * y + c * x * z],
+            [s * z + c * x * y, 1 - c * (x * x + z * z), -s * x + c * y * z],
+            [-s * y + c * x * z, s * x + c * y * z, 1 - c * (x * x + y * y)]]
+
+
+def apply(r, p):
+    return [sum(r[i][j] * p[j] for j in range(3)) for i in range(3)]
+
+
+def quaternion(q):
+    w, x, y, z = (c / math.sqrt(sum(c * c for c in q)) for c in q)
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+
+
+def read_colliders(scene):
+    """The scene's colliders as (reference point, local polygons around it, velocity, angular
+    velocity, is_plane): polygons in the collider's frame, moved at draw time."""
+    data = json.loads(scene.read_text())
+    out = []
+    for c in data.get("colliders", []):
+        kind = c["type"]
+        polys, ref = [], None
+        ring = [(math.cos(2 * math.pi * k / 16), math.sin(2 * math.pi * k / 16)) for k in range(17)]
+
+        def ball(center, r, lats=8):
+            for i in range(lats):
+                a0, a1 = math.pi * i / lats - math.pi / 2, math.pi * (i + 1) / lats - math.pi / 2
+                for (c0, s0), (c1, s1) in zip(ring, ring[1:]):
+                    polys.append([[center[0] + r * math.cos(a) * cc, center[1] + r * math.sin(a),
+                                   center[2] + r * math.cos(a) * ss]
+                                  for a, cc, ss in ((a0, c0, s0), (a0, c1, s1), (a1, c1, s1),
+                                                    (a1, c0, s0))])
+        if kind == "plane":
+            ref, n = c["point"], c["normal"]
+            polys = [n]  # drawn across the view at draw time
+        elif kind == "sphere":
+            ref = c["center"]
+            ball([0, 0, 0], c["radius"])
+        elif kind == "capsule":
+            a, b, r = c["a"], c["b"], c["radius"]
+            ref = [(a[k] + b[k]) / 2 for k in range(3)]
+            h = [(b[k] - a[k]) / 2 for k in range(3)]
+            length = math.sqrt(sum(x * x for x in h)) or 1.0
+            d = [x / length for x in h]
+            e = [0, 0, 1] if abs(d[2]) < 0.9 else [1, 0, 0]
+            u = [d[1] * e[2] - d[2] * e[1], d[2] * e[0] - d[0] * e[2], d[0] * e[1] - d[1] * e[0]]
+            un = math.sqrt(sum(x * x for x in u))
+            u = [x / un for x in u]
+            v = [d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2], d[0] * u[1] - d[1] * u[0]]
+            for (c0, s0), (c1, s1) in zip(ring, ring[1:]):
+                polys.append([[sign * h[k] + r * (cc * u[k] + ss * v[k]) for k in range(3)]
+                              for sign, cc, ss in ((-1, c0, s0), (-1, c1, s1), (1, c1, s1),
+                                                   (1, c0, s0))])
+            ball([-x for x in h], r)
+            ball(h, r)
+        elif kind == "box":
+            ref, e = c["center"], c["half_extents"]
+            r = quaternion(c.get("rotation", [1, 0, 0, 0]))
+            corner = [[apply(r, [sx * e[0], sy * e[1], sz * e[2]]) for sz in (-1, 1)]
+                      for sx in (-1, 1) for sy in (-1, 1)]  # corner[2 sx + sy][sz]
+            for axis in range(3):
+                for side in (0, 1):
+                    quad = []
+                    for i, j in ((0, 0), (0, 1), (1, 1), (1, 0)):
+                        idx = [0, 0, 0]
+                        idx[axis] = side
+                        free = [k for k in range(3) if k != axis]
+                        idx[free[0]], idx[free[1]] = i, j
+                        quad.append(corner[2 * idx[0] + idx[1]][idx[2]])
+                    polys.append(quad)
+        elif kind == "mesh":
+            vertices, polygons, _ = read_obj(scene.parent / c["obj"])
+            lo = [min(v[k] for v in vertices) for k in range(3)]
+            hi = [max(v[k] for v in vertices) for k in range(3)]
+            ref = [(lo[k] + hi[k]) / 2 for k in range(3)]
+            polys = [[[vertices[i][k] - ref[k] for k in range(3)] for i in poly]
+                     for poly in polygons]
+        out.append((ref, polys, c.get("velocity", [0, 0, 0]),
+                    c.get("angular_velocity", [0, 0, 0]), kind == "plane"))
+    return out
+
+
+def draw_colliders(ax, colliders, t, limits):
+    """The colliders at time t (seconds), in grey."""
+    for ref, polys, v, w, plane in colliders:
+        r = rotation(w, t)
+        origin = [ref[k] + v[k] * t for k in range(3)]
+        if plane:
+            n = apply(r, polys[0])
+            centre = [(lo + hi) / 2 for lo, hi in limits]  # view coordinates: x, z, y
+            centre = [centre[0], centre[2], centre[1]]
+            nn = math.sqrt(sum(x * x for x in n))
+            n = [x / nn for x in n]
+            dist = sum((centre[k] - origin[k]) * n[k] for k in range(3))
+            p = [centre[k] - dist * n[k] for k in range(3)]
+            e = [1, 0, 0] if abs(n[0]) < 0.9 else [0, 0, 1]
+            u = [n[1] * e[2] - n[2] * e[1], n[2] * e[0] - n[0] * e[2], n[0] * e[1] - n[1] * e[0]]
+            un = math.sqrt(sum(x * x for x in u))
+            u = [x / un for x in u]
+            b = [n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]]
+            size = max(hi - lo for lo, hi in limits) / 2
+            quad = [[p[k] + size * (i * u[k] + j * b[k]) for k in range(3)]
+                    for i, j in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+            world = [quad]
+        else:
+            world = [[[origin[k] + q[k] for k in range(3)] for q in (apply(r, x) for x in poly)]
+                     for poly in polys]
+        ax.add_collection3d(Poly3DCollection([[to_view(q) for q in poly] for poly in world],
+                                             facecolor="#b7b7b7", edgecolor="#888888",
+                                             linewidths=0.1, alpha=0.35))
+
+
 def to_view(p):
     """Simulation (x, y, z) to plot coordinates with y up."""
     return (p[0], p[2], p[1])
 
 
-def draw(ax, frame, limits, title, pinned=(), legend=False):
+def draw(ax, frame, limits, title, pinned=(), legend=False, colliders=(), t=0.0):
     vertices, polygons, edges = frame
     ax.cla()
+    if colliders:
+        draw_colliders(ax, colliders, t, limits)
     view = [to_view(v) for v in vertices]
     if polygons:
         faces = [[view[i] for i in poly] for poly in polygons]
@@ -208,7 +337,11 @@ def main():
                         help="with --dt: spread the PNG's panels over 0..UNTIL s (default: the "
                              "whole run)")
     parser.add_argument("--size", type=float, default=3.2, help="panel size in inches (3.2)")
+    parser.add_argument("--scene", type=pathlib.Path,
+                        help="3D: draw this JSON scene's colliders (moved to each frame's time "
+                             "with --dt)")
     args = parser.parse_args()
+    colliders = read_colliders(args.scene) if args.scene else ()
 
     runs, names = [], []
     for folder in args.frames:
@@ -234,6 +367,9 @@ def main():
         if args.frame_time != 1:
             return f"t = {k * args.frame_time:.2f} s"
         return files[min(k, len(files) - 1)]
+
+    def time(k):  # seconds, for moving colliders (0 without --dt)
+        return numbers[min(k, len(numbers) - 1)] * args.dt if args.dt is not None else 0.0
 
     if args.lengths:
         plot_lengths(args.lengths, frames, args.frame_time)
@@ -269,7 +405,8 @@ def main():
         fig = plt.figure(figsize=(args.size * count, args.size * 1.1))
         for panel, index in enumerate(picks):
             ax = fig.add_subplot(1, count, panel + 1, projection="3d")
-            draw(ax, frames[index], limits, title(index), pinned, legend=panel == 0)
+            draw(ax, frames[index], limits, title(index), pinned, legend=panel == 0,
+                 colliders=colliders, t=time(index))
         fig.subplots_adjust(left=0.01, right=0.97, bottom=0.04, top=0.93, wspace=0.08)
         fig.savefig(args.png, dpi=110)
         plt.close(fig)
@@ -278,7 +415,8 @@ def main():
         fig = plt.figure(figsize=(4.5, 4))
         ax = fig.add_subplot(projection="3d")
         movie = animation.FuncAnimation(
-            fig, lambda k: draw(ax, frames[k], limits, title(k), pinned, legend=True),
+            fig, lambda k: draw(ax, frames[k], limits, title(k), pinned, legend=True,
+                                colliders=colliders, t=time(k)),
             frames=len(frames))
         movie.save(args.gif, writer=animation.PillowWriter(fps=args.fps))
         plt.close(fig)

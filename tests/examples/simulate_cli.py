@@ -19,7 +19,8 @@ CASE is one of
              --threads 2 gives the same one bit for bit (where OpenMP is), --ordering and
              backward Euler's options run, the header names what runs
   resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
-             frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink)
+             frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink; a scene with
+             moving colliders of every kind, with every integrator)
 Only the standard library."""
 
 import hashlib
@@ -350,8 +351,41 @@ def options(simulate, source, work):
     print("OK: accelerations, rho, orderings, threads and Newton options reach the solver")
 
 
+def write_contact_scene(work):
+    """contact.json: a 5 x 5 cloth lying on a plane that rises, with a sphere, a capsule, a box
+    and a mesh (bump.obj), every one moving, so that contact happens from the first step."""
+    with open(os.path.join(work, "contact_cloth.obj"), "w") as handle:
+        for r in range(5):
+            for c in range(5):
+                handle.write(f"v {c / 4} 0.5 {r / 4}\n")
+        for r in range(4):
+            for c in range(4):
+                a = r * 5 + c + 1
+                handle.write(f"f {a} {a + 1} {a + 6} {a + 5}\n")
+    with open(os.path.join(work, "bump.obj"), "w") as handle:
+        handle.write("v 0.1 0.45 0.1\nv 0.7 0.45 0.3\nv 0.1 0.55 0.9\nv 0.9 0.5 0.7\n"
+                     "f 1 2 3\nf 2 4 3\n")
+    with open(os.path.join(work, "contact.json"), "w") as handle:
+        handle.write("""{"obj": "contact_cloth.obj", "b": [], "k": 100, "m": 0.05,
+  "colliders": [
+    {"type": "plane", "point": [0, 0.5, 0], "normal": [0.01, 1, 0.02], "friction": 0.3,
+     "velocity": [0, 0.2, 0]},
+    {"type": "sphere", "center": [0.5, 0.45, 0.5], "radius": 0.1,
+     "friction": {"static": 0.5, "kinetic": 0.3}, "velocity": [0, 1, 0],
+     "angular_velocity": [0, 3, 0]},
+    {"type": "capsule", "a": [0, 0.55, 0.2], "b": [1, 0.55, 0.3], "radius": 0.03,
+     "friction": 0.2, "angular_velocity": [5, 0, 0]},
+    {"type": "box", "center": [0.2, 0.5, 0.8], "half_extents": [0.1, 0.05, 0.1],
+     "rotation": [0.9, 0.1, 0.3, 0.2], "restitution": 0.5, "thickness": 0.01,
+     "velocity": [0.1, 0, 0], "angular_velocity": [0, 2, 0]},
+    {"type": "mesh", "obj": "bump.obj", "velocity": [0, 0.1, 0],
+     "angular_velocity": [0, 0, 0.5], "thickness": 0.005}]}
+""")
+
+
 def resume(simulate, source, work):
     prepare(source, work)
+    write_contact_scene(work)
     # (scene, options): the resumed run gets the options again, except --dt and --integrator,
     # which the state file records (with the frame number and Chebyshev's rho).
     cases = [
@@ -361,6 +395,13 @@ def resume(simulate, source, work):
         (["--generate", "chain:12"], ["--integrator", "backward-euler"]),
         (["--generate", "chain:12"], ["--shrink", "0.5", "--precision", "float"]),
         (["chain.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),
+        # colliders of every kind, moving, with every integrator (issue 22)
+        (["contact.json"], []),
+        (["contact.json"], ["--acceleration", "chebyshev", "--iterations", "10"]),
+        (["contact.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),
+        (["contact.json"], ["--integrator", "forward-euler", "--dt", "0.0005"]),
+        (["contact.json"], ["--integrator", "backward-euler"]),
+        (["contact.json"], ["--integrator", "linearized-backward-euler"]),
     ]
     for k, (scene, options) in enumerate(cases):
         whole, first, second, state = (f"r{k}_20.csv", f"r{k}_a.csv", f"r{k}_b.csv",

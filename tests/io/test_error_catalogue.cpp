@@ -17,6 +17,7 @@
 #include <massspring/massspring.hpp>
 #include <regex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../../fuzz/scene_targets.hpp"
@@ -154,7 +155,8 @@ TEST_CASE("J4 missing required key") {
 
 TEST_CASE("J5 unknown, repeated or unsupported key") {
   const JsonScene unknown(R"({"obj": "tri.obj", "b": [1], "k": 10, "wind": 1})");
-  CHECK(unknown.error() == unknown.name() + ": unknown key \"wind\" (expected obj, b, k, m, png)");
+  CHECK(unknown.error() ==
+        unknown.name() + ": unknown key \"wind\" (expected obj, b, k, m, png, colliders)");
   const JsonScene twice(R"({"obj": "tri.obj", "b": [1], "k": 10, "k": 20})");
   CHECK(twice.error() == twice.name() + ": key \"k\" appears twice");
   const JsonScene bc(R"({"obj": "tri.obj", "b": [1], "k": 10, "bc": [[0, 0, 0]]})");
@@ -283,6 +285,87 @@ TEST_CASE("J17 repeated springs in an OBJ are merged (accepted)") {
                     std::string(kTriangle) + "v 1 1 0\nf 2 4 3\nf 1 2\nf 2 1\nl 1 2 3\n");
   const System system = massspring::io::load_scene<System>(s.json);
   CHECK(system.num_springs() == 5);  // (0,1) (0,2) (1,2) (1,3) (2,3)
+}
+
+TEST_CASE("J18 colliders not a list, an entry not an object, a missing or unknown type") {
+  const std::string head = R"({"obj": "tri.obj", "b": [], "k": 10, "colliders": )";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{}", "key \"colliders\": expected an array of collider objects, got object {}"},
+      {"[3]",
+       "colliders[0]: expected an object with a \"type\" (plane, sphere, capsule, box or mesh), "
+       "got number 3"},
+      {"[{}]", "colliders[0]: missing key \"type\" (plane, sphere, capsule, box or mesh)"},
+      {R"([{"type": "cone"}])",
+       "colliders[0]: unknown type \"cone\" (expected plane, sphere, capsule, box or mesh)"}};
+  for (const auto& [colliders, message] : cases) {
+    const JsonScene s(head + colliders + "}");
+    CHECK(s.error() == s.name() + ": " + message);
+  }
+}
+
+TEST_CASE("J19 unknown, missing or repeated collider key") {
+  const std::string head =
+      R"({"obj": "tri.obj", "b": [], "k": 10, "colliders": [{"type": "sphere", "center": [0, 0, 0])";
+  const JsonScene unknown(head + R"(, "radius": 1, "radiu": 2}]})");
+  CHECK(unknown.error() == unknown.name() +
+                               ": colliders[0] (sphere): unknown key \"radiu\" (a sphere takes "
+                               "center, radius; friction, restitution, thickness, velocity, "
+                               "angular_velocity)");
+  const JsonScene missing(head + "}]}");
+  CHECK(missing.error() == missing.name() + ": colliders[0] (sphere): missing key \"radius\"");
+  const JsonScene twice(head + R"(, "radius": 1, "radius": 2}]})");
+  CHECK(twice.error() == twice.name() + ": colliders[0]: key \"radius\" appears twice");
+}
+
+TEST_CASE("J20 collider value of the wrong type or out of range") {
+  const std::string head = R"({"obj": "tri.obj", "b": [], "k": 10, "colliders": [)";
+  const std::string sphere = R"({"type": "sphere", "center": [0, 0, 0], )";
+  const std::string box = R"({"type": "box", "center": [0, 0, 0], )";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {sphere + R"("radius": -1})", "(sphere): \"radius\" must be finite and > 0, got -1"},
+      {sphere + R"("radius": "a"})", "(sphere): \"radius\" must be a number > 0, got string \"a\""},
+      {R"({"type": "sphere", "center": [0, 0], "radius": 1})",
+       "(sphere): \"center\" must be [x, y, z] (3 numbers), got array [0,0]"},
+      {R"({"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 0]})",
+       "(plane): \"normal\" must not be zero, got [0,0,0]"},
+      {box + R"("half_extents": [1, 0, 1]})",
+       "(box): \"half_extents\" must be 3 numbers > 0, got [1,0,1]"},
+      {box + R"("half_extents": [1, 1, 1], "rotation": [0, 0, 0, 0]})",
+       "(box): \"rotation\" must be a quaternion [w, x, y, z], not zero, got [0,0,0,0]"},
+      {sphere + R"("radius": 1, "friction": {"static": 0.3, "kinetic": 0.5}})",
+       "(sphere): \"friction\": kinetic 0.5 exceeds static 0.3 (Coulomb: kinetic <= static)"},
+      {sphere + R"("radius": 1, "restitution": 2})",
+       "(sphere): \"restitution\" must be finite and in [0, 1], got 2"},
+      {sphere + R"("radius": 1, "thickness": -1})",
+       "(sphere): \"thickness\" must be finite and >= 0, got -1"}};
+  for (const auto& [collider, message] : cases) {
+    const JsonScene s(head + collider + "]}");
+    CHECK(s.error() == s.name() + ": colliders[0] " + message);
+  }
+  const JsonScene huge(head + sphere + R"("radius": 1e39}]})");
+  CHECK(error_of([&] { (void)massspring::io::read_json_scene<float>(huge.json); }) ==
+        huge.name() +
+            ": colliders[0] (sphere): \"radius\" must be finite and > 0 (in this Scalar type), got "
+            "1e+39");
+}
+
+TEST_CASE("J21 a mesh collider's OBJ missing, not polygons, or degenerate") {
+  const std::string head =
+      R"({"obj": "tri.obj", "b": [], "k": 10, "colliders": [{"type": "mesh", "obj": )";
+  const JsonScene none(head + R"("none.obj"}]})");
+  CHECK(none.error() == none.name() + ": colliders[0] (mesh): \"obj\": OBJ file " +
+                            (none.dir.path() / "none.obj").string() + " not found");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"v 0 0 0\nv 1 0 0\nf 1 2\n",
+       " has 2-vertex faces or lines: a collider mesh takes polygons only"},
+      {"v 0 0 0\n", " has no polygons: a collider mesh needs some"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n",
+       ": polygon 1 (counting from 0: OBJ vertices 1, 2, 4) has a triangle of zero area"}};
+  for (const auto& [obj, message] : cases) {
+    const JsonScene s(head + R"("m.obj"}]})");
+    const fs::path m = s.dir.write("m.obj", obj);
+    CHECK(s.error() == s.name() + ": colliders[0] (mesh): \"obj\": " + m.string() + message);
+  }
 }
 
 // ---- O: OBJ files (read_obj), messages "<file>:<line>: ..." ---------------------------------

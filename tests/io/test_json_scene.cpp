@@ -144,7 +144,7 @@ TEST_CASE("read_json_scene refuses bad scenes, naming the file and the key") {
       {R"({"obj": "tri.obj", "b": [1], "k": 1, "bc": [[0,0,0]]})",
        "key \"bc\" (pinned positions) is not supported"},
       {R"({"obj": "tri.obj", "b": [1], "k": 1, "wind": true})",
-       "unknown key \"wind\" (expected obj, b, k, m, png)"},
+       "unknown key \"wind\" (expected obj, b, k, m, png, colliders)"},
       {R"({"b": [1], "k": 1})", "missing key \"obj\""},
       {R"({"obj": "tri.obj", "k": 1})", "missing key \"b\""},
       {R"({"obj": "tri.obj", "b": [1]})", "missing key \"k\""},

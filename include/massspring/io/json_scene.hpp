@@ -17,19 +17,13 @@
 
 #include "massspring/error.hpp"
 #include "massspring/io/detail/text_file.hpp"
+#include "massspring/io/json_colliders.hpp"
 #include "massspring/io/obj.hpp"
 #include "massspring/scene/scene_description.hpp"
 
 namespace massspring::io {
 
 namespace detail {
-
-/// @brief A JSON value for a message: its type and, when short, its text.
-inline std::string describe_json(const nlohmann::json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
-  return message(value.type_name(), ' ', text);
-}
 
 /// @brief A number's shortest round-trip decimal text (valid JSON for finite values).
 template <class Scalar>
@@ -61,12 +55,31 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
   };
 
   std::set<std::string> seen;
+  // Inside "colliders": the entry being read and the keys of each object open in it.
+  std::string root_key;
+  long long entry = -1;
+  std::vector<std::set<std::string>> open;
   Json root;
   try {
     root = Json::parse(text, [&](int depth, Json::parse_event_t event, Json& parsed) {
-      if (depth == 1 && event == Json::parse_event_t::key) {
+      using Event = Json::parse_event_t;
+      if (depth == 1 && event == Event::key) {
         const std::string& key = parsed.get_ref<const std::string&>();
         if (!seen.insert(key).second) throw error("key \"", key, "\" appears twice");
+        root_key = key;
+      } else if (depth >= 2 && root_key == "colliders") {
+        if (depth == 2 &&
+            (event == Event::object_start || event == Event::array_start || event == Event::value))
+          ++entry;  // the next element of the list
+        if (event == Event::object_start) {
+          open.emplace_back();
+        } else if (event == Event::object_end && !open.empty()) {
+          open.pop_back();
+        } else if (event == Event::key && !open.empty() &&
+                   !open.back().insert(parsed.get_ref<const std::string&>()).second) {
+          throw error("colliders[", entry, "]: key \"", parsed.get_ref<const std::string&>(),
+                      "\" appears twice");
+        }
       }
       return true;
     });
@@ -91,8 +104,9 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
       throw error(
           "key \"bc\" (pinned positions) is not supported: pinned vertices stay at their "
           "rest positions");
-    if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png")
-      throw error("unknown key \"", key, "\" (expected obj, b, k, m, png)");
+    if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png" &&
+        key != "colliders")
+      throw error("unknown key \"", key, "\" (expected obj, b, k, m, png, colliders)");
   }
   auto require = [&](const char* key) -> const Json& {
     const auto it = root.find(key);
@@ -152,6 +166,9 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
                   " has ", n, " vertices");
     scene.pinned.push_back(static_cast<int>(b[p].get<std::int64_t>() - 1));
   }
+  if (const auto colliders = root.find("colliders"); colliders != root.end())
+    scene.colliders =
+        detail::parse_json_colliders<Scalar>(*colliders, name, json.parent_path(), load_obj);
   scene.vertices = std::move(mesh.vertices);
   scene.faces = std::move(mesh.faces);
   scene.edges = std::move(mesh.edges);
@@ -168,7 +185,9 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 /// - `"k"` (required number >= 0): the stiffness of every spring [N/m];
 /// - `"m"` (optional number > 0): the mass of every vertex [kg]; when absent, make_system() gives
 ///   each vertex its lumped Voronoi area (density 1 kg/m^2);
-/// - `"png"` (optional string): a texture, ignored.
+/// - `"png"` (optional string): a texture, ignored;
+/// - `"colliders"` (optional array of objects): obstacles, in order (docs/scenes.md lists their
+///   keys); a mesh's `"obj"` is relative to the JSON file's folder, its polygons fan-triangulated.
 ///
 /// @tparam Scalar float or double
 /// @param[in] json  the .json file
@@ -177,7 +196,8 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 /// position in "b"), a non-finite or negative stiffness, a mass that is not > 0; naming the file
 /// with nlohmann's line and column when the text is not JSON; for a state scene (the key
 /// "massspring_state": written by write_scene(), read by load_scene() or read_state_scene()); and
-/// read_obj()'s errors (file and line) for the OBJ file.
+/// read_obj()'s errors (file and line) for the OBJ file; for a collider, naming its entry:
+/// `<json>: colliders[2] (sphere): "radius" must be finite and > 0, got -1`.
 template <class Scalar = double>
 SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
   const std::string text = detail::read_text_file(json, "JSON scene");
@@ -190,11 +210,12 @@ SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
 
 /// @brief Writes a scene in the assignment's JSON+OBJ format: `<stem>.obj` beside `json` (with
 /// write_obj(): polygons as `f a b c ...`, edges as `f i j`), then `json` referencing it, pins
-/// 1-based, `"m"` only when the mass is given. Each file is written atomically (`.tmp`, then
-/// renamed). read_json_scene() gives the same description back, bit for bit.
+/// 1-based, `"m"` only when the mass is given, the colliders (a mesh collider's triangles in
+/// `<stem>_collider<i>.obj` beside it, i its index). Each file is written atomically (`.tmp`,
+/// then renamed). read_json_scene() gives the same description back, bit for bit.
 /// @param[in] json   the .json file to write (its folder must exist); must not end in .obj
 /// @param[in] scene  faces of 3 or more vertices, indices and pins in range, stiffness finite and
-///                   >= 0, mass (when given) finite and > 0
+///                   >= 0, mass (when given) finite and > 0, colliders make_collider() accepts
 /// @throws Error naming the file and the item for an invalid scene (nothing is written) or when
 /// a file cannot be written.
 template <class Scalar>
@@ -215,7 +236,24 @@ void write_json_scene(const std::filesystem::path& json, const SceneDescription<
     if (scene.pinned[p] < 0 || scene.pinned[p] >= n)
       throw error("pin ", p, ": vertex index ", scene.pinned[p], " out of range [0, ", n, ")");
 
+  for (std::size_t c = 0; c < scene.colliders.size(); ++c) {
+    const ColliderDescription<Scalar>& d = scene.colliders[c];
+    try {
+      (void)make_collider<Scalar>(d);
+    } catch (const Error& e) {
+      throw error("colliders[", c, "] (", contact::to_string(d.shape), "): ", e.what());
+    }
+  }
+
   write_obj(obj_path, scene.vertices, scene.faces, scene.edges);
+  for (std::size_t c = 0; c < scene.colliders.size(); ++c) {
+    const ColliderDescription<Scalar>& d = scene.colliders[c];
+    if (d.shape != contact::ColliderShape::Mesh) continue;
+    std::vector<std::vector<int>> triangles(std::size_t(d.triangles.rows()));
+    for (Eigen::Index t = 0; t < d.triangles.rows(); ++t)
+      triangles[std::size_t(t)] = {d.triangles(t, 0), d.triangles(t, 1), d.triangles(t, 2)};
+    write_obj(detail::collider_obj_path(json, c), d.vertices, triangles, Edges(0, 2));
+  }
 
   std::string out = "{\n  \"obj\": ";
   out += nlohmann::json(obj_path.filename().string()).dump();
@@ -226,6 +264,7 @@ void write_json_scene(const std::filesystem::path& json, const SceneDescription<
   }
   out += "],\n  \"k\": " + detail::json_number(scene.stiffness);
   if (scene.mass) out += ",\n  \"m\": " + detail::json_number(*scene.mass);
+  detail::append_json_colliders(out, json, scene.colliders);
   out += "\n}\n";
   detail::write_text_file_atomically(json, out);
 }

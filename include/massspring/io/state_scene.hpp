@@ -14,13 +14,15 @@
 ///      "forces": [{"type": "gravity", "g": [gx, gy, gz]},
 ///                 {"type": "constant force", "force": [fx, fy, fz]},
 ///                 {"type": "linear drag", "beta": b}],
+///      "colliders": [{"type": "plane", ...}, ...],  // optional: io/detail/state_colliders.hpp
 ///      "faces": [[a, b, c, ...], ...], "edges": [[i, j], ...],  // optional: for drawing only
 ///      "run": {...}}                                // optional: the caller's, kept as it is
 ///
 /// Numbers are written as the shortest decimal text that reads back to the same double (floats
 /// are widened to double first, so they read back exactly too): loading the file gives a system
 /// equal to the written one in every field, bit for bit (masses, stiffness, rest lengths,
-/// damping, pins and their targets, positions, velocities, the force terms in order). Only the
+/// damping, pins and their targets, positions, velocities, the force terms in order, the
+/// colliders with their current pose and velocities). Only the
 /// revision() differs: a loaded system is a new model.
 
 #include <cmath>
@@ -35,6 +37,8 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/gravity.hpp"
 #include "massspring/forces/linear_drag.hpp"
+#include "massspring/io/detail/json_text.hpp"
+#include "massspring/io/detail/state_colliders.hpp"
 #include "massspring/io/detail/text_file.hpp"
 #include "massspring/io/obj.hpp"
 #include "massspring/system/mass_spring_system.hpp"
@@ -64,43 +68,6 @@ namespace detail {
 
 /// @brief The key that marks a JSON file as a state scene; its value is the format's version.
 inline constexpr const char* kStateSceneKey = "massspring_state";
-
-/// @brief x as the shortest text that reads back as the same double through nlohmann-json: -0 is
-/// written "-0.0" (nlohmann reads "-0" as the integer 0, losing the sign).
-inline void append_real(std::string& out, double x) {
-  if (x == 0 && std::signbit(x)) {
-    out += "-0.0";
-    return;
-  }
-  append_number(out, x);
-}
-
-template <class Derived>
-void append_rows(std::string& out, const Eigen::DenseBase<Derived>& m) {
-  out += '[';
-  for (Eigen::Index i = 0; i < m.rows(); ++i) {
-    out += i ? ",\n    [" : "\n    [";
-    for (Eigen::Index c = 0; c < m.cols(); ++c) {
-      if (c) out += ", ";
-      if constexpr (std::is_integral_v<typename Derived::Scalar>)
-        append_index(out, int(m(i, c)));
-      else
-        append_real(out, double(m(i, c)));
-    }
-    out += ']';
-  }
-  out += m.rows() ? "\n  ]" : "]";
-}
-
-template <class Derived>
-void append_list(std::string& out, const Eigen::DenseBase<Derived>& v) {
-  out += '[';
-  for (Eigen::Index i = 0; i < v.size(); ++i) {
-    if (i) out += ", ";
-    append_real(out, double(v(i)));
-  }
-  out += ']';
-}
 
 }  // namespace detail
 
@@ -184,6 +151,10 @@ void write_scene(const System& system, const std::filesystem::path& path,
   out += ",\n  \"velocities\": ";
   append_rows(out, system.velocities());
   out += ",\n  \"forces\": " + forces;
+  if (!system.colliders().empty()) {
+    out += ",\n  \"colliders\": ";
+    detail::append_state_colliders(out, system.colliders());
+  }
   if (!extras.faces.empty()) {
     out += ",\n  \"faces\": [";
     for (std::size_t f = 0; f < extras.faces.size(); ++f) {
@@ -232,7 +203,8 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
   static const char* const known[] = {
       "massspring_state", "rest_positions", "springs", "masses",      "stiffness",
       "rest_lengths",     "damping",        "pinned",  "pin_targets", "positions",
-      "velocities",       "forces",         "faces",   "edges",       "run"};
+      "velocities",       "forces",         "faces",   "edges",       "run",
+      "colliders"};
   for (const auto& item : root.items()) {
     bool ok = false;
     for (const char* k : known) ok = ok || item.key() == k;
@@ -336,6 +308,9 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
             detail::message("key \"forces\": entry ", k, ": unknown force term ", f.dump()));
       }
     }
+    if (const auto colliders = root.find("colliders"); colliders != root.end())
+      for (auto& c : detail::parse_state_colliders<Scalar>(*colliders))
+        out.system.add_collider(std::move(c));
   } catch (const Error& e) {
     const std::string what = e.what();
     if (what.rfind(name + ": ", 0) == 0) throw;

@@ -2,6 +2,8 @@
 /// @file
 /// @brief make_system(): a MassSpringSystem from a SceneDescription.
 
+#include <cstddef>
+
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/scene/face_springs.hpp"
@@ -12,8 +14,9 @@ namespace massspring {
 
 /// @brief Builds the system a scene describes: springs from face_springs(), rest lengths from the
 /// vertices, uniform stiffness, the given uniform mass or else voronoi_masses(), pins at the rest
-/// positions.
-/// @throws Error for invalid indices, a missing mass without faces, or a vertex of zero mass.
+/// positions, then the colliders in their order.
+/// @throws Error for invalid indices, a missing mass without faces, a vertex of zero mass, or a
+/// collider make_collider() refuses (named `colliders[i] (shape): `).
 template <class System, class Scalar>
 System make_system(const SceneDescription<Scalar>& scene) {
   using S = typename System::Scalar;
@@ -35,6 +38,15 @@ System make_system(const SceneDescription<Scalar>& scene) {
   System system(scene.vertices.template cast<S>(), springs, masses,
                 Vector<S>::Constant(springs.rows(), S(scene.stiffness)));
   system.pin(scene.pinned);
+  for (std::size_t c = 0; c < scene.colliders.size(); ++c) {
+    const ColliderDescription<Scalar>& d = scene.colliders[c];
+    try {
+      system.add_collider(make_collider<S>(d));
+    } catch (const Error& e) {
+      throw Error(
+          detail::message("colliders[", c, "] (", contact::to_string(d.shape), "): ", e.what()));
+    }
+  }
   return system;
 }
 

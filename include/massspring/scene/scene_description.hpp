@@ -1,11 +1,12 @@
 #pragma once
 /// @file
 /// @brief SceneDescription: a mesh, its pins, stiffness and mass, as the assignment's JSON+OBJ
-/// scenes hold them. make_system() turns it into a MassSpringSystem.
+/// scenes hold them, and the obstacles it falls on. make_system() turns it into a MassSpringSystem.
 
 #include <optional>
 #include <vector>
 
+#include "massspring/scene/collider_description.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring {
@@ -30,6 +31,9 @@ struct SceneDescription {
   Scalar stiffness = 0;
   /// @brief Mass of every vertex [kg]; when absent, the lumped Voronoi areas of the faces.
   std::optional<Scalar> mass;
+  /// @brief Obstacles (the key "colliders"), in file order: make_system() adds them to the
+  /// system in this order.
+  std::vector<ColliderDescription<Scalar>> colliders;
 };
 
 }  // namespace massspring
