@@ -432,18 +432,22 @@ class Collider {
     const V3 a = rotation_.transpose() * (x_start - translation_);
     const V3 b = end_rotation_.transpose() * (x_end - end_translation_);
     V3 n;
-    if (!(local_phi(a, n) >= thickness_ - slop)) return;  // started inside: its nearest surface
+    // A start within a millionth of the solid's inner size below the surface counts as outside
+    // (a point resting on it sits there up to rounding, and must not fall through).
+    const Scalar start_tol = std::max(slop, Scalar(1e-6) * inner_);
+    if (!(local_phi(a, n) >= thickness_ - start_tol)) return;  // started inside: nearest surface
     Scalar lo = 0, hi = 1;
     for (int k = 0; k < 48 && hi - lo > std::numeric_limits<Scalar>::epsilon(); ++k) {
       const Scalar mid = (lo + hi) / 2;
-      if (local_phi(a + mid * (b - a), n) >= thickness_ - slop)
+      if (local_phi(a + mid * (b - a), n) >= thickness_ - start_tol)
         lo = mid;
       else
         hi = mid;
     }
     const V3 e = a + lo * (b - a);
-    local_phi(e, n);
-    c.depth = (e - b).dot(n);
+    const Scalar phi_e = local_phi(e, n);
+    // Onto the plane tangent at e, moved out to phi = thickness (e may start a rounding inside).
+    c.depth = (e - b).dot(n) + (thickness_ - phi_e);
     c.normal = end_rotation_ * n;
   }
 
