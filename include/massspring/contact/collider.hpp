@@ -21,6 +21,7 @@
 /// and put back on the side it came from.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>

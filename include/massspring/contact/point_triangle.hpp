@@ -9,6 +9,7 @@
 /// parameter range [0, 1].
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "massspring/types.hpp"

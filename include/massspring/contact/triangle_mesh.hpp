@@ -8,6 +8,7 @@
 /// log2(m) + 1).
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
