@@ -1,0 +1,641 @@
+// contact/collider.hpp, triangle_mesh.hpp, point_triangle.hpp (issue 22, item 1): the geometry
+// of the colliders against independent oracles. Signed distance and outward normal of the plane,
+// sphere, capsule and box against their closed forms (inside and outside, a rotated box, a moved
+// pose, the pose a velocity and an angular velocity give after a step, and the surface velocity
+// v + w x (x - t)); the mesh's closest point and first crossing against a brute force over all
+// triangles written here (its own point-triangle distance and segment-plane crossing); the errors
+// for degenerate input.
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <massspring/contact/collider.hpp>
+#include <massspring/contact/triangle_mesh.hpp>
+#include <massspring/error.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace contact = massspring::contact;
+using V3 = massspring::Vector3<double>;
+using M3 = Eigen::Matrix3d;
+using Pts = massspring::Points<double>;
+using Collider = contact::Collider<double>;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// phi(x) and the normal and surface velocity the collider reports at x (end pose), by asking
+// for the contact with an unbounded slop: depth = thickness - phi.
+struct Probe {
+  double phi;
+  V3 normal, velocity;
+};
+Probe probe(const Collider& c, const V3& x) {
+  contact::ColliderContact<double> k;
+  const bool hit = c.contact(x, x, 1e30, k);
+  REQUIRE(hit);
+  return {c.thickness() - k.depth, k.normal, k.velocity};
+}
+
+// ---- oracles
+// --------------------------------------------------------------------------------------
+
+// Closest point of the segment [a, b] to p (clamped projection).
+V3 segment_closest(const V3& p, const V3& a, const V3& b) {
+  const V3 d = b - a;
+  const double dd = d.squaredNorm();
+  const double t = dd > 0 ? std::clamp((p - a).dot(d) / dd, 0.0, 1.0) : 0.0;
+  return a + t * d;
+}
+
+// Closest point of triangle (a, b, c) to p: the projection onto the plane when it lies inside
+// (barycentric coordinates from areas), else the nearest of the three edges' closest points.
+// Independent of Ericson's Voronoi-region walk in point_triangle.hpp.
+V3 triangle_closest(const V3& p, const V3& a, const V3& b, const V3& c) {
+  const V3 n = (b - a).cross(c - a);
+  const V3 q = p - (p - a).dot(n) / n.squaredNorm() * n;
+  const double wa = (b - q).cross(c - q).dot(n), wb = (c - q).cross(a - q).dot(n),
+               wc = (a - q).cross(b - q).dot(n);
+  if (wa >= 0 && wb >= 0 && wc >= 0) return q;
+  V3 best = segment_closest(p, a, b);
+  for (const V3& e : {segment_closest(p, b, c), segment_closest(p, c, a)})
+    if ((e - p).squaredNorm() < (best - p).squaredNorm()) best = e;
+  return best;
+}
+
+// Where the segment p0 -> p1 crosses triangle (a, b, c): the plane's crossing parameter and the
+// signed areas of the crossing point (all >= 0 inside). `margin` is the smallest normalised
+// barycentric coordinate (negative outside) and the distance of the ends from the plane relative
+// to the segment, so that a caller can leave out the cases within rounding of an edge.
+struct Crossing {
+  bool hit = false;
+  double t = kInf, margin = 0;
+};
+Crossing segment_triangle(const V3& p0, const V3& p1, const V3& a, const V3& b, const V3& c) {
+  Crossing r;
+  const V3 n = (b - a).cross(c - a);
+  const double s0 = (p0 - a).dot(n), s1 = (p1 - a).dot(n);
+  if ((s0 > 0 && s1 > 0) || (s0 < 0 && s1 < 0) || s0 == s1) {
+    r.margin = std::min(std::abs(s0), std::abs(s1)) / n.norm() / (p1 - p0).norm();
+    return r;
+  }
+  r.t = s0 / (s0 - s1);
+  const V3 q = p0 + r.t * (p1 - p0);
+  const double area = n.squaredNorm();
+  const double wa = (b - q).cross(c - q).dot(n) / area, wb = (c - q).cross(a - q).dot(n) / area,
+               wc = (a - q).cross(b - q).dot(n) / area;
+  r.hit = wa >= 0 && wb >= 0 && wc >= 0;
+  r.margin = std::min(
+      {std::abs(wa), std::abs(wb), std::abs(wc), std::abs(s0) / n.norm(), std::abs(s1) / n.norm()});
+  return r;
+}
+
+// Signed distance from the axis-aligned box [-h, h] and its outward normal: outside, the distance
+// to the clamped point; inside, minus the distance to the nearest of the six faces.
+double box_oracle(const V3& p, const V3& h, V3& n) {
+  const V3 clamped = p.cwiseMax(-h).cwiseMin(h);
+  if (clamped != p) {
+    n = (p - clamped).normalized();
+    return (p - clamped).norm();
+  }
+  double best = kInf;
+  for (int k = 0; k < 3; ++k)
+    for (const double side : {-1.0, 1.0}) {
+      const double d = h(k) - side * p(k);  // distance to the face x_k = side h_k
+      if (d < best) {
+        best = d;
+        n = V3::Zero();
+        n(k) = side;
+      }
+    }
+  return -best;
+}
+
+void check_vec(const V3& got, const V3& want, double tol) {
+  INFO("got (" << got.transpose() << "), want (" << want.transpose() << ")");
+  CHECK((got - want).norm() <= tol);
+}
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const massspring::Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// Random points in a cube.
+struct Random {
+  std::mt19937_64 engine;
+  std::uniform_real_distribution<double> u{-1, 1};
+  explicit Random(unsigned seed) : engine(seed) {}
+  double operator()() { return u(engine); }
+  V3 point(double scale = 1) { return scale * V3((*this)(), (*this)(), (*this)()); }
+};
+
+}  // namespace
+
+// ---- analytic shapes
+// ------------------------------------------------------------------------------
+
+TEST_CASE("plane collider: phi = (x - p) . n / |n| and the unit normal, on both sides") {
+  const V3 p(0.3, -0.2, 0.5), n_raw(1, 2, -2);  // |n_raw| = 3
+  const Collider c = Collider::plane(p, n_raw);
+  const V3 n = n_raw / 3;
+  check_vec(c.axis(), n, 1e-15);
+  Random r(1);
+  for (int k = 0; k < 200; ++k) {
+    const V3 x = r.point(2);
+    const Probe q = probe(c, x);
+    CHECK(std::abs(q.phi - (x - p).dot(n)) <= 1e-14);
+    check_vec(q.normal, n, 1e-15);
+    CHECK(q.velocity.isZero());
+  }
+  // Outside and beyond the slop: no contact; within the thickness: contact, depth t - phi.
+  Collider thick = Collider::plane(p, n_raw);
+  thick.set_thickness(0.1);
+  contact::ColliderContact<double> k;
+  CHECK_FALSE(thick.contact(p + 0.2 * n, p + 0.2 * n, 0, k));
+  REQUIRE(thick.contact(p + 0.05 * n, p + 0.05 * n, 0, k));
+  CHECK(std::abs(k.depth - 0.05) <= 1e-15);
+}
+
+TEST_CASE("sphere collider: phi = |x - c| - r, n = (x - c) / |x - c|, inside and outside") {
+  const V3 center(1, -2, 0.5);
+  const double radius = 0.7;
+  const Collider c = Collider::sphere(center, radius);
+  Random r(2);
+  int inside = 0;
+  for (int k = 0; k < 300; ++k) {
+    const V3 x = center + r.point(1.2);
+    const Probe q = probe(c, x);
+    const double phi = (x - center).norm() - radius;
+    inside += phi < 0;
+    CHECK(std::abs(q.phi - phi) <= 1e-14);
+    check_vec(q.normal, (x - center).normalized(), 1e-14);
+    // x + (-phi) n lies on the sphere.
+    CHECK(std::abs((x - q.phi * q.normal - center).norm() - radius) <= 1e-14);
+  }
+  CHECK(inside > 30);
+  CHECK(inside < 270);
+}
+
+TEST_CASE("capsule collider: phi = distance to the segment - r, inside and outside, a = b") {
+  const V3 a(-0.4, 0.1, 0.2), b(0.6, 0.5, -0.3);
+  const double radius = 0.3;
+  const Collider c = Collider::capsule(a, b, radius);
+  Random r(3);
+  int inside = 0, ends = 0;
+  for (int k = 0; k < 300; ++k) {
+    const V3 x = (a + b) / 2 + r.point(1.0);
+    const V3 foot = segment_closest(x, a, b);
+    const double phi = (x - foot).norm() - radius;
+    inside += phi < 0;
+    ends += (foot - a).norm() < 1e-15 || (foot - b).norm() < 1e-15;
+    const Probe q = probe(c, x);
+    CHECK(std::abs(q.phi - phi) <= 1e-14);
+    check_vec(q.normal, (x - foot).normalized(), 1e-13);
+  }
+  CHECK(inside > 20);
+  CHECK(ends > 20);  // the spherical caps were tested too
+  // A point on the axis: phi = -r, some unit normal perpendicular to the axis.
+  const Probe axis_point = probe(c, (a + b) / 2);
+  CHECK(std::abs(axis_point.phi + radius) <= 1e-15);
+  CHECK(std::abs(axis_point.normal.norm() - 1) <= 1e-15);
+  CHECK(std::abs(axis_point.normal.dot(b - a)) <= 1e-15);
+  // a = b is a sphere.
+  const Collider ball = Collider::capsule(a, a, radius);
+  for (int k = 0; k < 20; ++k) {
+    const V3 x = a + r.point(1.0);
+    CHECK(std::abs(probe(ball, x).phi - ((x - a).norm() - radius)) <= 1e-14);
+  }
+}
+
+TEST_CASE("box collider: signed distance and normal, axis-aligned and rotated (w, x, y, z)") {
+  const V3 center(0.2, -0.1, 0.4), h(0.5, 0.2, 0.35);
+  // A non-unit quaternion: the collider normalises it.
+  const Eigen::Vector4d wxyz = 3 * Eigen::Vector4d(0.8, 0.2, -0.4, 0.4).normalized();
+  const M3 rotated =
+      Eigen::Quaterniond(wxyz(0), wxyz(1), wxyz(2), wxyz(3)).normalized().toRotationMatrix();
+  for (const bool rotate : {false, true}) {
+    CAPTURE(rotate);
+    const M3 R = rotate ? rotated : M3::Identity();
+    const Collider c = rotate ? Collider::box(center, h, wxyz) : Collider::box(center, h);
+    CHECK((c.rotation() - R).norm() <= 1e-15);
+    Random r(rotate ? 5 : 4);
+    int inside = 0;
+    for (int k = 0; k < 400; ++k) {
+      const V3 x = center + r.point(0.6);
+      V3 n_local;
+      const double phi = box_oracle(R.transpose() * (x - center), h, n_local);
+      inside += phi < 0;
+      const Probe q = probe(c, x);
+      CHECK(std::abs(q.phi - phi) <= 1e-14);
+      check_vec(q.normal, R * n_local, 1e-13);
+      // Pushed out by -phi along the normal, the point lands on the surface.
+      V3 unused;
+      CHECK(std::abs(box_oracle(R.transpose() * (x - q.phi * q.normal - center), h, unused)) <=
+            1e-14);
+    }
+    CHECK(inside > 40);
+    CHECK(inside < 360);
+  }
+  // Exact face, edge and corner directions of the axis-aligned box.
+  const Collider c = Collider::box(center, h);
+  Probe q = probe(c, center + V3(0.9, 0, 0));  // 0.4 beyond the +x face
+  CHECK(std::abs(q.phi - 0.4) <= 1e-15);
+  check_vec(q.normal, V3::UnitX(), 0);
+  q = probe(c, center + V3(0.5 + 0.3, 0.2 + 0.4, 0));  // beyond the (+x, +y) edge: 3-4-5
+  CHECK(std::abs(q.phi - 0.5) <= 1e-15);
+  check_vec(q.normal, V3(0.6, 0.8, 0), 1e-15);
+  q = probe(c, center + V3(0, -0.15, 0.1));  // inside, nearest face -y at 0.05
+  CHECK(std::abs(q.phi + 0.05) <= 1e-15);
+  check_vec(q.normal, -V3::UnitY(), 0);
+}
+
+TEST_CASE("set_pose moves each shape rigidly: reference point to t, axes by R") {
+  const M3 R = Eigen::AngleAxisd(0.7, V3(1, -2, 0.5).normalized()).toRotationMatrix();
+  const V3 t(0.5, 1.5, -0.25);
+  Random r(6);
+  SUBCASE("plane: through t with normal R n") {
+    Collider c = Collider::plane(V3(1, 1, 1), V3(0, 0, 2));
+    c.set_pose(R, t);
+    for (int k = 0; k < 50; ++k) {
+      const V3 x = t + r.point();
+      const Probe q = probe(c, x);
+      CHECK(std::abs(q.phi - (x - t).dot(R.col(2))) <= 1e-14);
+      check_vec(q.normal, R.col(2), 1e-15);
+    }
+  }
+  SUBCASE("sphere: centre at t") {
+    Collider c = Collider::sphere(V3(-3, 0, 0), 0.4);
+    c.set_pose(R, t);
+    for (int k = 0; k < 50; ++k) {
+      const V3 x = t + r.point();
+      CHECK(std::abs(probe(c, x).phi - ((x - t).norm() - 0.4)) <= 1e-14);
+    }
+  }
+  SUBCASE("capsule: ends t + R (a - m), t + R (b - m)") {
+    const V3 a(0, 0, 0), b(1, 0.5, 0), m = (a + b) / 2;
+    Collider c = Collider::capsule(a, b, 0.2);
+    c.set_pose(R, t);
+    const V3 a2 = t + R * (a - m), b2 = t + R * (b - m);
+    for (int k = 0; k < 100; ++k) {
+      const V3 x = t + r.point();
+      CHECK(std::abs(probe(c, x).phi - ((x - segment_closest(x, a2, b2)).norm() - 0.2)) <= 1e-14);
+    }
+  }
+  SUBCASE("box: centre t; R replaces the orientation (the pose maps its axes)") {
+    const V3 h(0.3, 0.2, 0.1);
+    const Eigen::Vector4d q0(std::cos(0.3), 0, 0, std::sin(0.3));  // 0.6 rad about z
+    Collider c = Collider::box(V3(2, 2, 2), h, q0);
+    const M3 R0 = Eigen::AngleAxisd(0.6, V3::UnitZ()).toRotationMatrix();
+    CHECK((c.rotation() - R0).norm() <= 1e-15);
+    c.set_pose(R * c.rotation(), t);  // turn the box by R about its centre, then move it
+    for (int k = 0; k < 100; ++k) {
+      const V3 x = t + r.point(0.5);
+      V3 n;
+      const double phi = box_oracle((R * R0).transpose() * (x - t), h, n);
+      const Probe p = probe(c, x);
+      CHECK(std::abs(p.phi - phi) <= 1e-14);
+      check_vec(p.normal, R * R0 * n, 1e-13);
+    }
+  }
+  SUBCASE("mesh: vertex t + R (v - centre of the bounding box)") {
+    Pts v(3, 3);
+    v << 0, 0, 0, 2, 0, 0, 0, 1, 0;
+    contact::Triangles f(1, 3);
+    f << 0, 1, 2;
+    Collider c = Collider::mesh(v, f);
+    c.set_thickness(10);  // every probe is within the thickness: phi is the distance
+    const V3 centre(1, 0.5, 0);
+    CHECK((c.translation() - centre).norm() == 0);
+    c.set_pose(R, t);
+    const V3 a = t + R * (V3(0, 0, 0) - centre), b = t + R * (V3(2, 0, 0) - centre),
+             cc = t + R * (V3(0, 1, 0) - centre);
+    for (int k = 0; k < 100; ++k) {
+      const V3 x = t + r.point();
+      CHECK(std::abs(probe(c, x).phi - (x - triangle_closest(x, a, b, cc)).norm()) <= 1e-14);
+    }
+  }
+  // Not a rotation: refused, the pose unchanged.
+  Collider c = Collider::sphere(V3(0, 0, 0), 1);
+  CHECK_THROWS_AS(c.set_pose(-M3::Identity(), t), massspring::Error);  // det -1
+  CHECK_THROWS_AS(c.set_pose(2 * M3::Identity(), t), massspring::Error);
+  CHECK_THROWS_AS(c.set_pose(M3::Identity(), V3(0, kInf, 0)), massspring::Error);
+  CHECK(c.translation().isZero());
+}
+
+TEST_CASE("moving collider: surface velocity v + w x (x - t); begin_step sets the end pose") {
+  const V3 v(0.3, -0.1, 0.2), w(0.5, 1.0, -2.0), center(0.1, 0.2, 0.3), h(0.4, 0.3, 0.2);
+  const double dt = 0.05;
+  Collider c = Collider::box(center, h);
+  c.set_velocity(v).set_angular_velocity(w);
+  Random r(7);
+  // Before a step: the current pose, t = centre.
+  for (int k = 0; k < 50; ++k) {
+    const V3 x = center + r.point();
+    check_vec(probe(c, x).velocity, v + w.cross(x - center), 1e-15);
+  }
+  // The end-of-step pose of a step of dt: t + v dt, exp([w] dt) R (Eigen's angle-axis).
+  c.begin_step(dt);
+  CHECK(c.translation() == center);  // not committed yet
+  const V3 t1 = center + dt * v;
+  const M3 R1 = Eigen::AngleAxisd(w.norm() * dt, w.normalized()).toRotationMatrix();
+  for (int k = 0; k < 100; ++k) {
+    const V3 x = t1 + r.point(0.6);
+    V3 n;
+    const double phi = box_oracle(R1.transpose() * (x - t1), h, n);
+    const Probe p = probe(c, x);
+    CHECK(std::abs(p.phi - phi) <= 1e-14);
+    check_vec(p.normal, R1 * n, 1e-13);
+    check_vec(p.velocity, v + w.cross(x - t1), 1e-15);
+  }
+  c.end_step();
+  check_vec(c.translation(), t1, 1e-16);
+  CHECK((c.rotation() - R1).norm() <= 1e-15);
+  // Ten more steps: the pose follows t0 + n v dt and the rotation by n w dt.
+  for (int k = 0; k < 10; ++k) {
+    c.begin_step(dt);
+    c.end_step();
+  }
+  check_vec(c.translation(), center + 11 * dt * v, 1e-15);
+  const M3 R11 = Eigen::AngleAxisd(w.norm() * 11 * dt, w.normalized()).toRotationMatrix();
+  CHECK((c.rotation() - R11).norm() <= 1e-14);
+}
+
+// ---- triangle mesh ------------------------------------------------------------------------------
+
+namespace {
+
+// A bumpy height field (a well-shaped mesh, 2 (k-1)^2 triangles) and a soup of random triangles
+// (overlapping, badly shaped boxes for the hierarchy).
+void height_field(int k, Pts& v, contact::Triangles& f) {
+  v.resize(k * k, 3);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double x = -1 + 2.0 * i / (k - 1), z = -1 + 2.0 * j / (k - 1);
+      v.row(i * k + j) << x, 0.2 * std::sin(3 * x) * std::cos(2 * z), z;
+    }
+  f.resize(2 * (k - 1) * (k - 1), 3);
+  int t = 0;
+  for (int i = 0; i + 1 < k; ++i)
+    for (int j = 0; j + 1 < k; ++j) {
+      const int a = i * k + j, b = a + 1, c = a + k + 1, d = a + k;
+      f.row(t++) << a, b, c;
+      f.row(t++) << a, c, d;
+    }
+}
+
+void soup(int m, Pts& v, contact::Triangles& f) {
+  Random r(11);
+  v.resize(3 * m, 3);
+  f.resize(m, 3);
+  for (int t = 0; t < m; ++t) {
+    const V3 c = r.point(1.0);
+    for (int k = 0; k < 3; ++k) v.row(3 * t + k) = (c + r.point(0.3)).transpose();
+    f.row(t) << 3 * t, 3 * t + 1, 3 * t + 2;
+  }
+}
+
+void check_mesh_queries(const Pts& v, const contact::Triangles& f, unsigned seed) {
+  const contact::TriangleMesh<double> mesh(v, f);
+  auto corner = [&](int t, int k) -> V3 { return v.row(f(t, k)).transpose(); };
+  Random r(seed);
+  // Closest point within a radius, against the minimum over all triangles.
+  int found = 0, none = 0;
+  for (int k = 0; k < 300; ++k) {
+    const V3 p = r.point(1.4);
+    const double radius = 0.05 + 0.5 * (r() + 1) / 2;
+    double best = kInf;
+    for (int t = 0; t < int(f.rows()); ++t)
+      best = std::min(best,
+                      (p - triangle_closest(p, corner(t, 0), corner(t, 1), corner(t, 2))).norm());
+    V3 q;
+    int tri = -1;
+    const bool hit = mesh.closest_within(p, radius, q, tri);
+    if (std::abs(best - radius) < 1e-12) continue;  // on the boundary of the query
+    CAPTURE(k);
+    REQUIRE(hit == (best < radius));
+    if (!hit) {
+      ++none;
+      continue;
+    }
+    ++found;
+    CHECK(std::abs((p - q).norm() - best) <= 1e-13);
+    // q lies on the triangle the query named.
+    CHECK((q - triangle_closest(q, corner(tri, 0), corner(tri, 1), corner(tri, 2))).norm() <=
+          1e-13);
+  }
+  CHECK(found > 50);
+  CHECK(none > 20);
+  // First crossing of a segment, against the smallest crossing parameter over all triangles;
+  // segments that pass within rounding of an edge or start or end on a plane are left out.
+  int crossings = 0, misses = 0, left_out = 0;
+  for (int k = 0; k < 400; ++k) {
+    // Random segments, every other one roughly vertical through the box of the mesh.
+    const V3 p0 = r.point(1.3);
+    const V3 p1 = k % 2 ? V3(p0 + r.point(0.8)) : V3(p0(0), -p0(1), p0(2)) + r.point(0.2);
+    Crossing first;
+    bool ambiguous = false;
+    for (int t = 0; t < int(f.rows()); ++t) {
+      const Crossing c = segment_triangle(p0, p1, corner(t, 0), corner(t, 1), corner(t, 2));
+      if (c.margin < 1e-9 && c.t <= 1) ambiguous = true;
+      if (c.hit && c.t <= 1 && c.t < first.t) first = c;
+    }
+    if (ambiguous) {
+      ++left_out;
+      continue;
+    }
+    double t_hit = -1;
+    int tri = -1;
+    const bool hit = mesh.first_crossing(p0, p1, t_hit, tri);
+    CAPTURE(k);
+    REQUIRE(hit == first.hit);
+    if (!hit) {
+      ++misses;
+      continue;
+    }
+    ++crossings;
+    CHECK(std::abs(t_hit - first.t) <= 1e-12);
+    const Crossing own = segment_triangle(p0, p1, corner(tri, 0), corner(tri, 1), corner(tri, 2));
+    CHECK(own.hit);
+    CHECK(std::abs(own.t - t_hit) <= 1e-12);
+  }
+  CHECK(crossings > 50);
+  CHECK(misses > 50);
+  CHECK(left_out < 10);
+}
+
+}  // namespace
+
+TEST_CASE("TriangleMesh: closest point and first crossing equal a brute force over all triangles") {
+  Pts v;
+  contact::Triangles f;
+  SUBCASE("height field, 242 triangles") {
+    height_field(12, v, f);
+    check_mesh_queries(v, f, 21);
+  }
+  SUBCASE("random soup, 300 triangles") {
+    soup(300, v, f);
+    check_mesh_queries(v, f, 22);
+  }
+}
+
+TEST_CASE("mesh collider: phi is the unsigned distance; a crossing path is sent back") {
+  Pts v;
+  contact::Triangles f;
+  height_field(8, v, f);
+  Collider c = Collider::mesh(v, f);
+  c.set_thickness(0.05);
+  auto corner = [&](int t, int k) -> V3 { return v.row(f(t, k)).transpose(); };
+  auto distance = [&](const V3& p) {
+    double best = kInf;
+    for (int t = 0; t < int(f.rows()); ++t)
+      best = std::min(best,
+                      (p - triangle_closest(p, corner(t, 0), corner(t, 1), corner(t, 2))).norm());
+    return best;
+  };
+  Random r(31);
+  int near = 0, crossed = 0;
+  for (int k = 0; k < 300; ++k) {
+    const V3 x = V3(0.9 * r(), 0.3 * r(), 0.9 * r());
+    const V3 x_end = x + V3(0.02 * r(), 0.02 * r(), 0.02 * r());
+    // Paths that cross the surface are checked below; here the start and end are on one side.
+    bool crosses = false;
+    for (int t = 0; t < int(f.rows()); ++t)
+      crosses |= segment_triangle(x, x_end, corner(t, 0), corner(t, 1), corner(t, 2)).hit;
+    if (crosses) continue;
+    const double d = distance(x_end);
+    contact::ColliderContact<double> kc;
+    const bool hit = c.contact(x, x_end, 0, kc);
+    if (std::abs(d - 0.05) < 1e-12) continue;
+    CHECK(hit == (d < 0.05));
+    if (!hit) continue;
+    ++near;
+    CHECK(std::abs(kc.depth - (0.05 - d)) <= 1e-13);
+    // The normal points from the closest point q of the mesh (brute force) to x_end: the push
+    // puts the point at the thickness from q.
+    V3 q;
+    double best = kInf;
+    for (int t = 0; t < int(f.rows()); ++t) {
+      const V3 qt = triangle_closest(x_end, corner(t, 0), corner(t, 1), corner(t, 2));
+      if ((qt - x_end).norm() < best) {
+        best = (qt - x_end).norm();
+        q = qt;
+      }
+    }
+    check_vec(kc.normal, (x_end - q).normalized(), 1e-9);
+    CHECK(std::abs((x_end + kc.depth * kc.normal - q).norm() - 0.05) <= 1e-12);
+  }
+  CHECK(near > 30);
+  // Paths through the surface (from above y = 0.5 to below): the push puts the end on the side
+  // of the first triangle crossed (brute force) the path started from, at the thickness from its
+  // plane (and a few rounding units), whatever the distance of the end.
+  for (int k = 0; k < 200; ++k) {
+    const double x0 = 0.8 * r(), z0 = 0.8 * r();
+    const V3 a(x0, 0.5, z0), b(x0 + 0.1 * r(), -0.5 + 0.3 * r(), z0 + 0.1 * r());
+    Crossing first;
+    int first_tri = -1;
+    for (int t = 0; t < int(f.rows()); ++t) {
+      const Crossing cr = segment_triangle(a, b, corner(t, 0), corner(t, 1), corner(t, 2));
+      if (cr.hit && cr.t < first.t) {
+        first = cr;
+        first_tri = t;
+      }
+    }
+    REQUIRE(first_tri >= 0);
+    if (first.margin < 1e-9) continue;  // through an edge: either triangle is right
+    contact::ColliderContact<double> kc;
+    REQUIRE(c.contact(a, b, 0, kc));
+    const V3 v0 = corner(first_tri, 0);
+    const V3 n = (corner(first_tri, 1) - v0).cross(corner(first_tri, 2) - v0).normalized();
+    const double side = (a - v0).dot(n) > 0 ? 1.0 : -1.0;
+    check_vec(kc.normal, side * n, 1e-12);
+    const V3 e = b + kc.depth * kc.normal;
+    const double height = side * (e - v0).dot(n);  // above the plane, on a's side
+    CHECK(height >= 0.05);
+    CHECK(height <= 0.05 + 1e-12);
+    ++crossed;
+  }
+  CHECK(crossed > 190);
+}
+
+// ---- errors
+// ---------------------------------------------------------------------------------------
+
+TEST_CASE("collider errors: degenerate shapes, materials and motions are refused with a message") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto has = [](const std::function<void()>& f, const std::string& part) {
+    const std::string m = message_of(f);
+    INFO(m);
+    CHECK(m.find(part) != std::string::npos);
+  };
+  has([] { Collider::plane(V3(0, 0, 0), V3(0, 0, 0)); }, "normal must not be zero");
+  has([&] { Collider::plane(V3(nan, 0, 0), V3(0, 0, 1)); }, "point must be finite");
+  has([&] { Collider::plane(V3(0, 0, 0), V3(0, kInf, 1)); }, "normal must be finite");
+  has([] { Collider::sphere(V3(0, 0, 0), 0); }, "radius must be finite and > 0");
+  has([] { Collider::sphere(V3(0, 0, 0), -1); }, "radius");
+  has([&] { Collider::sphere(V3(0, 0, 0), nan); }, "radius");
+  has([&] { Collider::sphere(V3(0, 0, 0), kInf); }, "radius");
+  has([&] { Collider::sphere(V3(0, nan, 0), 1); }, "center must be finite");
+  has([] { Collider::capsule(V3(0, 0, 0), V3(1, 0, 0), 0); }, "capsule collider: radius");
+  has([&] { Collider::capsule(V3(0, 0, 0), V3(nan, 0, 0), 1); }, "capsule: b");
+  has([] { Collider::box(V3(0, 0, 0), V3(1, 0, 1)); }, "half_extents");
+  has([] { Collider::box(V3(0, 0, 0), V3(1, 1, -1)); }, "half_extents");
+  has([] { Collider::box(V3(0, 0, 0), V3(1, 1, 1), Eigen::Vector4d::Zero()); }, "quaternion");
+  has([&] { Collider::box(V3(0, 0, 0), V3(1, 1, 1), Eigen::Vector4d(1, nan, 0, 0)); },
+      "quaternion");
+  // Meshes.
+  Pts v(3, 3);
+  v << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  contact::Triangles f(1, 3);
+  f << 0, 1, 2;
+  CHECK_NOTHROW(Collider::mesh(v, f));
+  has([&] { Collider::mesh(Pts(0, 3), f); }, "no vertices");
+  has([&] { Collider::mesh(v, contact::Triangles(0, 3)); }, "no triangles");
+  contact::Triangles bad = f;
+  bad(0, 2) = 3;
+  has([&] { Collider::mesh(v, bad); }, "triangle 0 has vertex index 3, out of range [0, 3)");
+  bad(0, 2) = -1;
+  has([&] { Collider::mesh(v, bad); }, "out of range");
+  bad(0, 2) = 1;  // a repeated vertex
+  has([&] { Collider::mesh(v, bad); }, "zero area");
+  Pts line = v;
+  line.row(2) << 2, 0, 0;  // collinear
+  has([&] { Collider::mesh(line, f); }, "zero area");
+  Pts not_finite = v;
+  not_finite(1, 1) = nan;
+  has([&] { Collider::mesh(not_finite, f); }, "not finite");
+  // Material and motion.
+  Collider c = Collider::sphere(V3(0, 0, 0), 1);
+  has([&] { c.set_friction(-0.1); }, "friction must be finite and >= 0");
+  has([&] { c.set_friction(nan); }, "friction");
+  has([&] { c.set_friction(kInf); }, "friction");
+  has([&] { c.set_friction(0.2, 0.3); }, "exceeds static friction");
+  has([&] { c.set_restitution(1.5); }, "restitution must be in [0, 1]");
+  has([&] { c.set_restitution(-0.1); }, "restitution");
+  has([&] { c.set_restitution(nan); }, "restitution");
+  has([&] { c.set_thickness(-1e-3); }, "thickness must be finite and >= 0");
+  has([&] { c.set_thickness(kInf); }, "thickness");
+  has([&] { c.set_velocity(V3(nan, 0, 0)); }, "velocity must be finite");
+  has([&] { c.set_angular_velocity(V3(0, 0, kInf)); }, "angular_velocity must be finite");
+  // Nothing was changed by the refused calls.
+  CHECK(c.static_friction() == 0);
+  CHECK(c.kinetic_friction() == 0);
+  CHECK(c.restitution() == 0);
+  CHECK(c.thickness() == 0);
+  CHECK(c.velocity().isZero());
+  CHECK(c.angular_velocity().isZero());
+  c.set_friction(0.5, 0.3).set_restitution(0.25).set_thickness(0.01);
+  CHECK(c.static_friction() == 0.5);
+  CHECK(c.kinetic_friction() == 0.3);
+  c.set_friction(0.4);
+  CHECK(c.kinetic_friction() == 0.4);
+}
