@@ -123,6 +123,7 @@ class Collider {
     c.axis_ = half_extents;
     c.rotation_ = quaternion_matrix(wxyz / wxyz.norm());
     c.end_rotation_ = c.rotation_;
+    c.previous_rotation_ = c.rotation_;
     c.refresh();
     return c;
   }
@@ -206,6 +207,8 @@ class Collider {
     translation_ = translation;
     end_rotation_ = rotation;
     end_translation_ = translation;
+    previous_rotation_ = rotation;
+    previous_translation_ = translation;
     refresh();
     return *this;
   }
@@ -250,11 +253,23 @@ class Collider {
   }
   /// @brief Makes the end-of-step pose the current one (after a successful step).
   void end_step() {
+    previous_rotation_ = rotation_;
+    previous_translation_ = translation_;
     rotation_ = end_rotation_;
     translation_ = end_translation_;
     motion_ = 0;
     refresh();
+  }  /// @brief Back to the pose before the last end_step() (a step rejected after it was
+  /// committed, e.g. by DivergenceGuard).
+  void undo_step() {
+    rotation_ = previous_rotation_;
+    translation_ = previous_translation_;
+    end_rotation_ = rotation_;
+    end_translation_ = translation_;
+    motion_ = 0;
+    refresh();
   }
+
 
   /// @brief True when no point of the path x_start -> x_end can be in contact: a quick test with a
   /// margin far above any rounding (contact() starts with it; slop adds to the margin).
@@ -323,6 +338,7 @@ class Collider {
  private:
   Collider(ColliderShape shape, const V3& reference) : shape_(shape), translation_(reference) {
     end_translation_ = reference;
+    previous_translation_ = reference;
   }
 
   // The quick rejection contact() starts with, in world coordinates at the end pose: a plane's
@@ -518,6 +534,8 @@ class Collider {
   V3 translation_;
   V3 velocity_ = V3::Zero(), angular_velocity_ = V3::Zero();
   M3 end_rotation_ = M3::Identity();  // the pose at the end of the current step (begin_step())
+  M3 previous_rotation_ = M3::Identity();  // the pose before the last end_step()
+  V3 previous_translation_ = V3::Zero();
   V3 end_translation_;
   // The quick rejection (refresh()): plane normal and offset, bounding radius, reach.
   V3 world_normal_ = V3::Zero();

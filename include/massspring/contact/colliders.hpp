@@ -77,6 +77,10 @@ class ColliderSet {
   void end_step() {
     for (auto& c : colliders_) c.end_step();
   }
+  /// @brief Each collider back to its pose before the last end_step().
+  void undo_step() {
+    for (auto& c : colliders_) c.undo_step();
+  }
 
   /// @brief The end-of-step response (see the file comment) of every point not pinned, from the
   /// start positions x_start to the end state (x_end, v_end), all #points by 3; masses [kg] weigh

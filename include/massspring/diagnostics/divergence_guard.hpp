@@ -75,7 +75,8 @@ class DivergenceGuard {
 
   /// @brief One step of `integrator`, checked. When the step is not finite (the integrator left
   /// the state unchanged) or the new total energy exceeds limit(), the state before the step is
-  /// restored and the report says so (`finite` false or `blew_up` true).
+  /// restored (the colliders' poses too) and the report says so (`finite` false or `blew_up`
+  /// true).
   template <class Integrator>
   StepReport step(Integrator& integrator, System& system) {
     if (system.num_points() != x_.rows())
@@ -89,6 +90,7 @@ class DivergenceGuard {
     if (!(e <= limit_)) {  // NaN included
       system.positions() = x_;
       system.velocities() = v_;
+      system.colliders().undo_step();  // the step moved them when it committed
       report.blew_up = true;
       report.finite = std::isfinite(e);
       return report;

@@ -131,7 +131,9 @@ class FastMassSpring {
         result = run_plain(report);
         break;
       case Acceleration::Chebyshev: {
-        if (!(options.chebyshev_rho > 0) && !(rho_estimate_ > 0)) {
+        // Estimated once per factorisation (0, "no acceleration", when the trial iterations do
+        // not give a rate in (0, 1), e.g. when they converge to rounding).
+        if (!(options.chebyshev_rho > 0) && !rho_estimated_) {
           estimate_rho();
           prepare(system);
         }
@@ -254,6 +256,7 @@ class FastMassSpring {
     weight_ = options.penalty_weight;
     revision_ = system.revision();
     rho_estimate_ = 0;
+    rho_estimated_ = false;
     const bool exact = pins_ == PinMode::Exact;
     const Scalar inv_dt2 = Scalar(1) / (dt_ * dt_);
 
@@ -430,6 +433,7 @@ class FastMassSpring {
     rho_estimate_ = Scalar(local_global::estimate_spectral_radius(
         it, buffers_[0].data(), buffers_[1].data(), 3 * Eigen::Index(reduced_.nr),
         options.chebyshev_estimate_iterations));
+    rho_estimated_ = true;
   }
 
   // Writes the result into the system when it is finite (positions and the velocities they imply),
@@ -482,6 +486,7 @@ class FastMassSpring {
   Scalar dt_ = 0;
   Scalar weight_ = 0;
   Scalar rho_estimate_ = 0;
+  bool rho_estimated_ = false;  // rho_estimate_ holds this factorisation's estimate
   PinMode pins_ = PinMode::Exact;
   FillOrdering ordering_ = FillOrdering::Auto;
   std::uint64_t revision_ = 0;
