@@ -270,7 +270,6 @@ class Collider {
     refresh();
   }
 
-
   /// @brief True when no point of the path x_start -> x_end can be in contact: a quick test with a
   /// margin far above any rounding (contact() starts with it; slop adds to the margin).
   template <class A, class B>
@@ -375,8 +374,6 @@ class Collider {
     slop_ = 16 * std::numeric_limits<Scalar>::epsilon() *
             (end_translation_.cwiseAbs().maxCoeff() + thickness_);
   }
-
-
 
   static void check_finite(const V3& v, const char* what) {
     if (!v.allFinite())
@@ -533,7 +530,7 @@ class Collider {
   M3 rotation_ = M3::Identity();
   V3 translation_;
   V3 velocity_ = V3::Zero(), angular_velocity_ = V3::Zero();
-  M3 end_rotation_ = M3::Identity();  // the pose at the end of the current step (begin_step())
+  M3 end_rotation_ = M3::Identity();       // the pose at the end of the current step (begin_step())
   M3 previous_rotation_ = M3::Identity();  // the pose before the last end_step()
   V3 previous_translation_ = V3::Zero();
   V3 end_translation_;
