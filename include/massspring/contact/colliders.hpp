@@ -150,12 +150,14 @@ class ColliderSet {
         moved = true;
         pushed = ci;
         if (c.static_friction() > 0) {
+          // Sticking, the common case, needs no square root.
           const V3 d_t = d - d.dot(k.normal) * k.normal;
-          const Scalar len = d_t.norm();
-          if (len <= c.static_friction() * k.depth)
+          const Scalar cone = c.static_friction() * k.depth;
+          const Scalar len2 = d_t.squaredNorm();
+          if (len2 <= cone * cone)
             xe -= d_t;
           else
-            xe -= (c.kinetic_friction() * k.depth / len) * d_t;
+            xe -= (c.kinetic_friction() * k.depth / std::sqrt(len2)) * d_t;
         }
       }
       if (ve) {
@@ -165,11 +167,12 @@ class ColliderSet {
           const Scalar e = c.restitution();
           const Scalar j = -(1 + e) * vn;
           V3 vt = vr - vn * k.normal;
-          const Scalar len = vt.norm();
-          if (len <= c.static_friction() * j)
+          const Scalar cone = c.static_friction() * j;
+          const Scalar len2 = vt.squaredNorm();
+          if (len2 <= cone * cone)
             vt.setZero();
           else
-            vt *= 1 - c.kinetic_friction() * j / len;
+            vt *= 1 - c.kinetic_friction() * j / std::sqrt(len2);
           const V3 after = k.velocity - e * vn * k.normal + vt;
           if (impulses) impulses[ci] += mass * (after - *ve);
           *ve = after;
