@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <massspring/io.hpp>
 #include <massspring/io/state_scene.hpp>
 #include <massspring/massspring.hpp>
@@ -318,9 +319,15 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
                           {"dt", p.dt},
                           {"integrator", p.integrator},
                           {"scene", s.name}};
+    // The rho this run used, so that a resumed run uses it too. The solver estimates it once per
+    // factorisation; an estimate of 0 (no acceleration: the trial iterations gave no rate in
+    // (0, 1)) is saved as the smallest positive float, which accelerates nothing either (omega =
+    // 2 / (2 - rho^2) is exactly 1, in float and double) but is not "estimate again".
     if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
-      if (c.acceleration == "chebyshev" && solver.chebyshev_rho() > 0)
-        run["chebyshev_rho"] = double(solver.chebyshev_rho());
+      if (c.acceleration == "chebyshev" && frame > 0)
+        run["chebyshev_rho"] = solver.chebyshev_rho() > 0
+                                   ? double(solver.chebyshev_rho())
+                                   : double(std::numeric_limits<float>::min());
     if (p.rest_at_0) {
       run["shrink"] = c.shrink;
       run["rest_lengths_at_frame_0"] = rest_at_0;

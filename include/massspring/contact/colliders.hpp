@@ -85,8 +85,11 @@ class ColliderSet {
   /// @brief The end-of-step response (see the file comment) of every point not pinned, from the
   /// start positions x_start to the end state (x_end, v_end), all #points by 3; masses [kg] weigh
   /// the impulses impulse() reports; pinned is ascending. Calls begin_step(dt). Allocates nothing.
+  /// Without `friction`, the colliders act as frictionless (FastMassSpring's end-of-step state
+  /// already holds the friction its contact term applied).
   void respond(const Points<Scalar>& x_start, Points<Scalar>& x_end, Points<Scalar>& v_end,
-               Scalar dt, const Vector<Scalar>& masses, const std::vector<int>& pinned) {
+               Scalar dt, const Vector<Scalar>& masses, const std::vector<int>& pinned,
+               bool friction = true) {
     begin_step(dt);
     for (V3& j : impulses_) j.setZero();
     std::size_t next_pin = 0;
@@ -99,7 +102,7 @@ class ColliderSet {
       V3 xe = x_end.row(i).transpose();
       if (!near(xs, xe)) continue;
       V3 ve = v_end.row(i).transpose();
-      respond_point(xs, xe, &ve, dt, masses(i));
+      push(xs, xe, &ve, dt, masses(i), impulses_.data(), friction);
       x_end.row(i) = xe.transpose();
       v_end.row(i) = ve.transpose();
     }
@@ -112,7 +115,7 @@ class ColliderSet {
     const Eigen::Map<const V3> xe(x_end);
     if (!near(xs, xe)) return;  // most points: a few flops each
     V3 moved = xe;
-    if (push(xs, moved, nullptr, dt, 0, nullptr))
+    if (push(xs, moved, nullptr, dt, 0, nullptr, true))
       for (int c = 0; c < 3; ++c) x_end[c] = moved(c);
   }
 
@@ -131,12 +134,9 @@ class ColliderSet {
     return 16 * std::numeric_limits<Scalar>::epsilon() * (1 + x.cwiseAbs().maxCoeff());
   }
 
-  void respond_point(const V3& xs, V3& xe, V3* ve, Scalar dt, Scalar mass) {
-    push(xs, xe, ve, dt, mass, impulses_.data());
-  }
-
   // The response of one point (velocity too when ve is not null); true when anything moved.
-  bool push(const V3& xs, V3& xe, V3* ve, Scalar dt, Scalar mass, V3* impulses) const {
+  bool push(const V3& xs, V3& xe, V3* ve, Scalar dt, Scalar mass, V3* impulses,
+            bool friction) const {
     bool moved = false;
     std::size_t pushed = colliders_.size();  // the collider that pushed the point last
     ColliderContact<Scalar> k;
@@ -149,7 +149,7 @@ class ColliderSet {
         xe += k.depth * k.normal;
         moved = true;
         pushed = ci;
-        if (c.static_friction() > 0) {
+        if (friction && c.static_friction() > 0) {
           // Sticking, the common case, needs no square root.
           const V3 d_t = d - d.dot(k.normal) * k.normal;
           const Scalar cone = c.static_friction() * k.depth;
@@ -167,12 +167,14 @@ class ColliderSet {
           const Scalar e = c.restitution();
           const Scalar j = -(1 + e) * vn;
           V3 vt = vr - vn * k.normal;
-          const Scalar cone = c.static_friction() * j;
-          const Scalar len2 = vt.squaredNorm();
-          if (len2 <= cone * cone)
-            vt.setZero();
-          else
-            vt *= 1 - c.kinetic_friction() * j / std::sqrt(len2);
+          if (friction) {
+            const Scalar cone = c.static_friction() * j;
+            const Scalar len2 = vt.squaredNorm();
+            if (len2 <= cone * cone)
+              vt.setZero();
+            else
+              vt *= 1 - c.kinetic_friction() * j / std::sqrt(len2);
+          }
           const V3 after = k.velocity - e * vn * k.normal + vt;
           if (impulses) impulses[ci] += mass * (after - *ve);
           *ve = after;

@@ -93,15 +93,18 @@ class CollisionHandlerSlot {
 /// system.colliders().end_step().
 /// @tparam System a MassSpringSystem (anything with collision_handler(), colliders(), masses(),
 /// pinned())
+/// `collider_friction` false: the colliders act as frictionless (FastMassSpring, whose contact
+/// term applied their friction inside the iteration).
 template <class System>
 void handle_collisions(System& system, const typename System::PointsType& x_start,
                        const typename System::PointsType& v_start,
                        typename System::PointsType& x_end, typename System::PointsType& v_end,
-                       typename System::Scalar dt) {
+                       typename System::Scalar dt, bool collider_friction = true) {
   if (auto* handler = system.collision_handler())
     handler->handle({x_start, v_start, x_end, v_end, dt, system.masses(), system.pinned()});
   if (!system.colliders().empty())
-    system.colliders().respond(x_start, x_end, v_end, dt, system.masses(), system.pinned());
+    system.colliders().respond(x_start, x_end, v_end, dt, system.masses(), system.pinned(),
+                               collider_friction);
 }
 
 }  // namespace massspring::contact

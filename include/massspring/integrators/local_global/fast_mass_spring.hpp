@@ -462,7 +462,9 @@ class FastMassSpring {
           v_end_(i, c) = (x[3 * r + c] - positions(i, c)) * inv_dt;
         }
       }
-      contact::handle_collisions(system, positions, velocities, x_end_, v_end_, dt_);
+      // Friction was the contact term's, inside the iteration: not applied a second time.
+      contact::handle_collisions(system, positions, velocities, x_end_, v_end_, dt_,
+                                 !contact_.active());
       if (!x_end_.allFinite() || !v_end_.allFinite()) {
         report.finite = false;
         return report;
