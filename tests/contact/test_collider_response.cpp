@@ -129,7 +129,7 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
       // iteration converges to rounding within them, as it does in these soft scenes, and is then
       // redone at every step (the drape ran 6x slower than plain local-global).
       o.chebyshev_rho = 0.5;
-      // The contact term (options.contact_weight, default 1) slows the iteration's convergence on
+      // The contact term (options.contact_weight > 0) slows the iteration's convergence on
       // motion its start does not predict, by 1/2 per iteration (docs/contact.md): start from the
       // inertial prediction, which free flight matches, so that the checks see contact and not
       // a 10-iteration residual.
