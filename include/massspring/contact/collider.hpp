@@ -28,7 +28,9 @@
 #include <memory>
 #include <utility>
 
+#include "massspring/contact/point_box.hpp"
 #include "massspring/contact/point_segment.hpp"
+#include "massspring/contact/rotation.hpp"
 #include "massspring/contact/triangle_mesh.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -41,19 +43,9 @@ enum class ColliderShape { Plane, Sphere, Capsule, Box, Mesh };
 
 /// @brief A collider's name in messages and scenes: "plane", "sphere", "capsule", "box", "mesh".
 inline const char* to_string(ColliderShape shape) {
-  switch (shape) {
-    case ColliderShape::Plane:
-      return "plane";
-    case ColliderShape::Sphere:
-      return "sphere";
-    case ColliderShape::Capsule:
-      return "capsule";
-    case ColliderShape::Box:
-      return "box";
-    case ColliderShape::Mesh:
-      return "mesh";
-  }
-  return "?";
+  static constexpr const char* names[] = {"plane", "sphere", "capsule", "box", "mesh"};
+  const int i = static_cast<int>(shape);
+  return i >= 0 && i < 5 ? names[i] : "?";
 }
 
 /// @brief A point's contact with one collider, in world coordinates.
@@ -121,7 +113,7 @@ class Collider {
       throw Error("box collider: rotation must be a finite, non-zero quaternion (w, x, y, z)");
     Collider c(ColliderShape::Box, center);
     c.axis_ = half_extents;
-    c.rotation_ = quaternion_matrix(wxyz / wxyz.norm());
+    c.rotation_ = quaternion_matrix<Scalar>(wxyz / wxyz.norm());
     c.end_rotation_ = c.rotation_;
     c.previous_rotation_ = c.rotation_;
     c.refresh();
@@ -246,7 +238,7 @@ class Collider {
   /// applied); contact() uses it. Called by ColliderSet::begin_step().
   void begin_step(Scalar dt) {
     end_translation_ = translation_ + dt * velocity_;
-    end_rotation_ = rotation_exp(angular_velocity_ * dt) * rotation_;
+    end_rotation_ = rotation_exp<Scalar>(angular_velocity_ * dt) * rotation_;
     // How far a point of the collider moves over the step (a mesh's path test).
     motion_ = (end_translation_ - translation_).norm() + angular_velocity_.norm() * dt * bound_;
     refresh();
@@ -308,13 +300,14 @@ class Collider {
         const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
         const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
         phi = d.distance - radius_;
-        c.normal = end_rotation_ * (d.distance > 0 ? V3(-d.n / d.distance) : perpendicular(axis_));
+        c.normal =
+            end_rotation_ * (d.distance > 0 ? V3(-d.n / d.distance) : perpendicular<Scalar>(axis_));
         break;
       }
       case ColliderShape::Box: {
         const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
         V3 n_local;
-        phi = box_distance(p, n_local);
+        phi = point_box_distance<Scalar>(p, axis_, n_local);
         c.normal = end_rotation_ * n_local;
         break;
       }
@@ -385,34 +378,6 @@ class Collider {
       throw Error(massspring::detail::message(what, " must be finite and > 0, got ", x));
   }
 
-  // The rotation matrix of a unit quaternion (w, x, y, z).
-  static M3 quaternion_matrix(const Eigen::Matrix<Scalar, 4, 1>& q) {
-    const Scalar w = q(0), x = q(1), y = q(2), z = q(3);
-    M3 r;
-    r << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-        2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),   //
-        2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
-    return r;
-  }
-
-  // exp([theta]x) by Rodrigues' formula: I + sin|t| K + (1 - cos|t|) K^2, K the unit axis's
-  // cross-product matrix.
-  static M3 rotation_exp(const V3& theta) {
-    const Scalar angle = theta.norm();
-    if (!(angle > 0)) return M3::Identity();
-    const V3 k = theta / angle;
-    M3 kx;
-    kx << 0, -k(2), k(1), k(2), 0, -k(0), -k(1), k(0), 0;
-    return M3::Identity() + std::sin(angle) * kx + (1 - std::cos(angle)) * (kx * kx);
-  }
-
-  // A unit vector perpendicular to a (a point on a capsule's axis has no closest direction).
-  static V3 perpendicular(const V3& a) {
-    const V3 other = std::abs(a(0)) < std::abs(a(2)) ? V3::UnitX() : V3::UnitZ();
-    const V3 p = a.cross(other);
-    return p.norm() > 0 ? V3(p / p.norm()) : V3::UnitZ();
-  }
-
   // phi and the outward normal of an analytic solid at a local point p.
   Scalar local_phi(const V3& p, V3& n) const {
     switch (shape_) {
@@ -426,11 +391,11 @@ class Collider {
       }
       case ColliderShape::Capsule: {
         const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
-        n = d.distance > 0 ? V3(-d.n / d.distance) : perpendicular(axis_);
+        n = d.distance > 0 ? V3(-d.n / d.distance) : perpendicular<Scalar>(axis_);
         return d.distance - radius_;
       }
       case ColliderShape::Box:
-        return box_distance(p, n);
+        return point_box_distance<Scalar>(p, axis_, n);
       case ColliderShape::Mesh:
         break;
     }
@@ -463,25 +428,6 @@ class Collider {
     // Onto the plane tangent at e, moved out to phi = thickness (e may start a rounding inside).
     c.depth = (e - b).dot(n) + (thickness_ - phi_e);
     c.normal = end_rotation_ * n;
-  }
-
-  // Signed distance from the box (half extents axis_) and the outward normal, in the local frame:
-  // outside, the distance to the nearest surface point; inside, minus the distance to the nearest
-  // face, whose normal is returned.
-  Scalar box_distance(const V3& p, V3& n) const {
-    const V3 q = p.cwiseAbs() - axis_;
-    const V3 outside = q.cwiseMax(V3::Zero());
-    const Scalar out = outside.norm();
-    if (out > 0) {
-      n = outside.cwiseProduct(p.cwiseSign()) / out;
-      // A component of p that is exactly 0 has no sign: it lies within that face's span.
-      return out;
-    }
-    int k = 0;
-    const Scalar inside = q.maxCoeff(&k);
-    n = V3::Zero();
-    n(k) = p(k) < 0 ? Scalar(-1) : Scalar(1);
-    return inside;
   }
 
   V3 surface_velocity(const V3& x) const {
