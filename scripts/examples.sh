@@ -11,7 +11,7 @@ scripts/setup.sh
 build=${BUILD_DIR:-build}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" \
-  --target massspring_simulate massspring_make_scenes
+  --target massspring_simulate massspring_make_scenes massspring_pole
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
 simulate="$build/examples/massspring-simulate"
@@ -65,5 +65,10 @@ for scene in drape table tilted mesh; do
   render "$out/$scene" --dt 0.005 --panels 4 --size 2.4 --scene "examples/scenes/$scene.json" \
     --png "$images/ex_$scene.png" --gif "$images/ex_$scene.gif" --fps 10
 done
+
+# A flag wound onto a turning pole (examples/pole.cpp): pins moved with the pole, dt = 2 ms, 5 s.
+"$build/examples/massspring-pole" --out "$out/pole" --every 50
+render "$out/pole" --dt 0.002 --panels 4 --size 2.4 --scene "$out/pole/pole.json" \
+  --png "$images/ex_pole.png" --gif "$images/ex_pole.gif" --fps 10
 
 ls -l "$images"/ex_*

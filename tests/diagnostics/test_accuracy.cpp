@@ -23,26 +23,26 @@
 namespace {
 
 using massspring::Sparse;
-using Points = massspring::Points<double>;
+using Pts = massspring::Points<double>;
 using SystemS = massspring::MassSpringSystem<double, Sparse>;
 namespace fs = std::filesystem;
 
 // A fresh, empty directory under the system's temporary directory; removed on destruction.
-struct TempDir {
+struct ScratchDir {
   fs::path path;
-  TempDir() {
+  ScratchDir() {
     std::random_device rd;
     const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
     path = fs::temp_directory_path() /
            ("massspring-test-reference-" + std::to_string(stamp) + "-" + std::to_string(rd()));
     fs::remove_all(path);
   }
-  ~TempDir() {
+  ~ScratchDir() {
     std::error_code ignored;
     fs::remove_all(path, ignored);
   }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
 
   [[nodiscard]] std::vector<fs::path> files() const {
     std::vector<fs::path> out;
@@ -54,9 +54,9 @@ struct TempDir {
 
 // Checks that x_star is a stationary point and a local minimum of the incremental potential of
 // the step from (x_start, v_start), and lower than the potential at x_start.
-void check_minimiser(const SystemS& s, const Points& x_star, const Points& x_start,
-                     const Points& v_start, double h) {
-  const auto e = [&](const Points& x) {
+void check_minimiser(const SystemS& s, const Pts& x_star, const Pts& x_start, const Pts& v_start,
+                     double h) {
+  const auto e = [&](const Pts& x) {
     return massspring::incremental_potential(s, x, x_start, v_start, h);
   };
   const double eps = 1e-6;
@@ -66,7 +66,7 @@ void check_minimiser(const SystemS& s, const Points& x_star, const Points& x_sta
   for (int i = 0; i < s.num_points(); ++i) {
     if (s.is_pinned(i)) continue;
     for (int a = 0; a < 3; ++a) {
-      Points p = x_start, m = x_start;
+      Pts p = x_start, m = x_start;
       p(i, a) += eps;
       m(i, a) -= eps;
       gradient_start += std::pow((e(p) - e(m)) / (2 * eps), 2);
@@ -78,7 +78,7 @@ void check_minimiser(const SystemS& s, const Points& x_star, const Points& x_sta
   std::normal_distribution<double> normal;
   double worst = 0;
   for (int k = 0; k < 10; ++k) {
-    Points d(s.num_points(), 3);
+    Pts d(s.num_points(), 3);
     for (int i = 0; i < d.rows(); ++i)
       for (int a = 0; a < 3; ++a) d(i, a) = s.is_pinned(i) ? 0.0 : normal(rng);
     d /= d.norm();
@@ -97,14 +97,14 @@ void check_minimiser(const SystemS& s, const Points& x_star, const Points& x_sta
 }  // namespace
 
 TEST_CASE("accuracy: bounding_box_diagonal is the box's diagonal") {
-  Points x(4, 3);
+  Pts x(4, 3);
   x << -1, 0, -3,  //
       2, 1, -2,    //
       0, 4, -1,    //
       1, 2, -2.5;
   // Extent (3, 4, 2).
   CHECK(massspring::bounding_box_diagonal(x) == doctest::Approx(std::sqrt(29.0)).epsilon(1e-15));
-  CHECK(massspring::bounding_box_diagonal(Points(0, 3)) == 0);
+  CHECK(massspring::bounding_box_diagonal(Pts(0, 3)) == 0);
   CHECK(massspring::bounding_box_diagonal(x.topRows(1)) == 0);
   const Eigen::MatrixX3f xf = x.cast<float>();
   CHECK(massspring::bounding_box_diagonal(xf) == doctest::Approx(std::sqrt(29.0)).epsilon(1e-6));
@@ -112,15 +112,15 @@ TEST_CASE("accuracy: bounding_box_diagonal is the box's diagonal") {
 
 TEST_CASE("accuracy: trajectory_error of a translation by d is |d| / diagonal") {
   const auto s = massspring::test::perturbed_cloth<SystemS>();
-  const Points& x = s.positions();
+  const Pts& x = s.positions();
   const Eigen::RowVector3d d(0.03, -0.04, 0.12);  // |d| = 0.13
-  const Points moved = x.rowwise() + d;
+  const Pts moved = x.rowwise() + d;
   for (const double diagonal : {1.0, 0.64, 2.5})
     CHECK(massspring::trajectory_error(moved, x, diagonal) ==
           doctest::Approx(0.13 / diagonal).epsilon(1e-13));
   CHECK(massspring::trajectory_error(x, x, 1.0) == 0);
   // RMS, not max: one point off by 1 among n gives 1 / sqrt(n).
-  Points one = x;
+  Pts one = x;
   one(3, 1) += 1;
   CHECK(massspring::trajectory_error(one, x, 1.0) ==
         doctest::Approx(1 / std::sqrt(double(x.rows()))).epsilon(1e-13));
@@ -142,13 +142,13 @@ TEST_CASE("accuracy: a converged BackwardEuler step minimises incremental_potent
     auto s = massspring::test::perturbed_cloth<SystemS>(5);
     s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.81, 0)));
     if (beta > 0) s.add_force(massspring::LinearDrag<double>(beta));
-    Points v = Points::Zero(s.num_points(), 3);
+    Pts v = Pts::Zero(s.num_points(), 3);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-0.5, 0.5);
     for (int i = 0; i < s.num_points(); ++i)
       if (!s.is_pinned(i)) v.row(i) << u(rng), u(rng), u(rng);
     s.set_velocities(v);
-    const Points x_start = s.positions(), v_start = s.velocities();
+    const Pts x_start = s.positions(), v_start = s.velocities();
     const double h = 1.0 / 30;
     massspring::BackwardEulerOptions<double> o;
     o.tolerance = 1e-13;
@@ -203,7 +203,7 @@ TEST_CASE("reference_solution: the oscillator at T = 1 matches 1 + u0 cos(w t)")
 }
 
 TEST_CASE("reference_solution: on-disk cache: reused, keyed by end time, truncation ignored") {
-  const TempDir dir;
+  const ScratchDir dir;
   const auto s = massspring::test::oscillator<SystemS>(1, 4, 1.0, 0.5);
   massspring::ReferenceOptions o;
   o.cache_directory = dir.path.string();
@@ -258,7 +258,7 @@ TEST_CASE("reference_solution: refuses invalid arguments") {
                            std::numeric_limits<double>::infinity()})
     CHECK_THROWS_AS(massspring::reference_solution(s, bad), massspring::Error);
   {
-    const TempDir dir;
+    const ScratchDir dir;
     massspring::ReferenceOptions o;
     o.cache_directory = dir.path.string();  // no key
     CHECK_THROWS_AS(massspring::reference_solution(s, 1.0, o), massspring::Error);

@@ -24,7 +24,7 @@ namespace {
 
 using massspring::Dense;
 using massspring::Sparse;
-using Points = massspring::Points<double>;
+using Pts = massspring::Points<double>;
 using SystemD = massspring::MassSpringSystem<double, Dense>;
 using SystemS = massspring::MassSpringSystem<double, Sparse>;
 
@@ -38,7 +38,7 @@ SystemS stiff_chain() {
   auto s = massspring::make_system<SystemS>(massspring::make_chain(o));
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.01, 0.01);
-  Points x = s.positions();
+  Pts x = s.positions();
   for (int i = 1; i + 1 < o.points; ++i) x.row(i) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
   s.set_positions(x);
   s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.81, 0)));
@@ -55,7 +55,7 @@ TEST_CASE("divergence_guard: SymplecticEuler at 3x the stable step blows up and 
   massspring::DivergenceGuard<SystemS> guard(s);
   int blew_up_at = -1;
   for (int i = 0; i < 500 && blew_up_at < 0; ++i) {
-    const Points x = s.positions(), v = s.velocities();
+    const Pts x = s.positions(), v = s.velocities();
     const double e = guard.energy();
     const auto r = guard.step(se, s);
     if (r.blew_up) {
@@ -105,7 +105,7 @@ TEST_CASE("divergence_guard: non-finite steps are reported and change nothing") 
   // (u, w) = (0.1, 10) on a unit spring: ForwardEuler with h = 1e308 makes x = 1 + h w overflow;
   // the integrator refuses it.
   auto s = massspring::test::oscillator<SystemS>(1, 1, 1.0, 0.1, 10);
-  const Points x0 = s.positions(), v0 = s.velocities();
+  const Pts x0 = s.positions(), v0 = s.velocities();
   massspring::DivergenceGuard<SystemS> guard(s);
   massspring::ForwardEuler<SystemS> fe;
   fe.precompute(s, 1e308);
@@ -129,7 +129,7 @@ TEST_CASE("divergence_guard: non-finite steps are reported and change nothing") 
 TEST_CASE("divergence_guard: limit = E(0) + growth S, S from the documented formula") {
   auto s = massspring::test::perturbed_cloth<SystemS>(4);
   s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.81, 0)));
-  Points v = Points::Zero(s.num_points(), 3);
+  Pts v = Pts::Zero(s.num_points(), 3);
   v.col(2).setConstant(0.3);
   for (const int i : s.pinned()) v.row(i).setZero();
   s.set_velocities(v);
@@ -138,7 +138,7 @@ TEST_CASE("divergence_guard: limit = E(0) + growth S, S from the documented form
   double springs = 0;
   for (int e = 0; e < s.num_springs(); ++e)
     springs += 0.5 * s.stiffness()(e) * s.rest_lengths()(e) * s.rest_lengths()(e);
-  Points f;
+  Pts f;
   massspring::total_force(s, s.positions(), s.velocities(), f);
   double force_sum = 0;
   for (int i = 0; i < s.num_points(); ++i) force_sum += f.row(i).norm();

@@ -26,7 +26,7 @@ namespace {
 
 using massspring::ExplicitMethod;
 using massspring::Sparse;
-using Points = massspring::Points<double>;
+using Pts = massspring::Points<double>;
 using SystemS = massspring::MassSpringSystem<double, Sparse>;
 
 // The true omega_max^2: the largest |eigenvalue| of M^-1/2 K M^-1/2, K = -dF/dx by central
@@ -40,7 +40,7 @@ double true_omega2_max(const SystemS& s) {
   const int n = int(free.size());
   Eigen::MatrixXd k(n, n);
   const double eps = 1e-6;
-  Points xp, xm, fp, fm;
+  Pts xp, xm, fp, fm;
   for (int c = 0; c < n; ++c) {
     xp = s.positions();
     xm = s.positions();
@@ -66,7 +66,7 @@ SystemS random_chain(unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> mass(0.2, 2), stiffness(20, 400), offset(-0.02, 0.02);
   const int n = 12;
-  Points x = Points::Zero(n, 3);
+  Pts x = Pts::Zero(n, 3);
   massspring::Edges e(n - 1, 2);
   Eigen::VectorXd m(n), k(n - 1);
   for (int i = 0; i < n; ++i) {
@@ -79,7 +79,7 @@ SystemS random_chain(unsigned seed) {
   }
   SystemS s(x, e, m, k);
   s.pin(0);
-  Points p = x;
+  Pts p = x;
   for (int i = 1; i < n; ++i) p.row(i) += Eigen::RowVector3d(offset(rng), offset(rng), offset(rng));
   s.set_positions(p);
   return s;
@@ -336,7 +336,7 @@ TEST_CASE("stable_time_step: SymplecticEuler and RK4 at the bound stay bounded o
 
 TEST_CASE("stable_time_step: nothing to limit h gives +infinity; a NaN state throws") {
   const double inf = std::numeric_limits<double>::infinity();
-  Points x = Points::Zero(3, 3);
+  Pts x = Pts::Zero(3, 3);
   x(1, 0) = 1;
   x(2, 1) = 1;
   SystemS empty(x, massspring::Edges(0, 2), 1.0, 1.0);
@@ -347,7 +347,7 @@ TEST_CASE("stable_time_step: nothing to limit h gives +infinity; a NaN state thr
   empty.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.81, 0)));
   CHECK(massspring::stability_limit(empty, ExplicitMethod::SymplecticEuler) == inf);
   // No points at all.
-  SystemS none(Points(0, 3), massspring::Edges(0, 2), 1.0, 1.0);
+  SystemS none(Pts(0, 3), massspring::Edges(0, 2), 1.0, 1.0);
   CHECK(massspring::stability_limit(none, ExplicitMethod::RK4) == inf);
 
   auto s = massspring::test::oscillator<SystemS>(1, 1, 1.0, 0.1);

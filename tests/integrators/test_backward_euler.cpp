@@ -23,7 +23,7 @@ using massspring::BackwardEuler;
 using massspring::BackwardEulerMode;
 using massspring::Dense;
 using massspring::Sparse;
-using Points = massspring::Points<double>;
+using Pts = massspring::Points<double>;
 using SystemD = massspring::MassSpringSystem<double, Dense>;
 using SystemS = massspring::MassSpringSystem<double, Sparse>;
 
@@ -131,7 +131,7 @@ TEST_CASE("BackwardEuler: Dense equals Sparse; pins stay put; drag and damping t
         mode == 0 ? BackwardEulerMode::Linearized : BackwardEulerMode::Newton;
     bd.precompute(dd, 0.02);
     bs.precompute(ss, 0.02);
-    const Points pins0 = ss.positions()(ss.pinned(), Eigen::all);
+    const Pts pins0 = ss.positions()(ss.pinned(), Eigen::all);
     for (int i = 0; i < 20; ++i) {
       REQUIRE(bd.step(dd).ok());
       const auto r = bs.step(ss);
@@ -148,13 +148,13 @@ TEST_CASE("BackwardEuler: Dense equals Sparse; pins stay put; drag and damping t
 TEST_CASE("BackwardEuler: a compressed stiff spring (indefinite A) is still solved") {
   // Two free points on a spring compressed to a tenth of its rest length, pushed sideways: the
   // exact A = M - h^2 dF/dx has negative transverse stiffness k (l - l0)/l, large here.
-  Points x = Points::Zero(2, 3);
+  Pts x = Pts::Zero(2, 3);
   x(1, 0) = 0.1;
   massspring::Edges e(1, 2);
   e << 0, 1;
   SystemS s(x, e, 1.0, 1e4);
   s.set_rest_lengths(Eigen::VectorXd::Constant(1, 1.0));
-  Points v = Points::Zero(2, 3);
+  Pts v = Pts::Zero(2, 3);
   v(1, 1) = 1;
   s.set_velocities(v);
   for (auto mode : {BackwardEulerMode::Linearized, BackwardEulerMode::Newton}) {
@@ -197,10 +197,10 @@ TEST_CASE("BackwardEuler: refuses bad input; failure leaves the state") {
   CHECK_THROWS_WITH_AS(be.step(s), "BackwardEuler: max_iterations must be >= 1, got 0",
                        massspring::Error);
   be.options.max_iterations = 5;
-  Points v = Points::Zero(2, 3);
+  Pts v = Pts::Zero(2, 3);
   v(1, 0) = 1e308;
   s.set_velocities(v);
-  const Points x0 = s.positions();
+  const Pts x0 = s.positions();
   const auto r = be.step(s);
   CHECK_FALSE(r.ok());
   CHECK(s.positions() == x0);

@@ -27,12 +27,12 @@
 namespace {
 
 using System = massspring::MassSpringSystem<double, massspring::Sparse>;
-using Points = massspring::Points<double>;
+using Pts = massspring::Points<double>;
 
 constexpr int kFrames = 100;
 
 /// FNV-1a (64 bit) over the bytes of a matrix's coefficients, continuing from h.
-std::uint64_t fnv1a(const Points& m, std::uint64_t h = 14695981039346656037ull) {
+std::uint64_t fnv1a(const Pts& m, std::uint64_t h = 14695981039346656037ull) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(m.data());
   const std::size_t n = std::size_t(m.size()) * sizeof(double);
   for (std::size_t b = 0; b < n; ++b) {
@@ -56,7 +56,7 @@ System make_cloth_system(bool gravity_term, int n) {
   o.stiffness = 200;
   o.mass = 0.01;
   System s = massspring::make_system<System>(massspring::make_cloth(o));
-  Points x = s.positions();
+  Pts x = s.positions();
   for (int i = 0; i < x.rows(); ++i)
     if (!s.is_pinned(i)) x(i, 2) = 0.01 * std::sin(0.37 * i);
   s.set_positions(x);
@@ -83,14 +83,14 @@ void check_deterministic(const char* name, bool gravity_term, int n, double dt,
   const std::string label = name;
   CAPTURE(label);
   System a = make_cloth_system(gravity_term, n);
-  const Points x0 = a.positions(), v0 = a.velocities();
+  const Pts x0 = a.positions(), v0 = a.velocities();
   const std::uint64_t start = state_hash(a);
 
   Integrator ia;
   configure(ia);
   ia.precompute(a, dt);
   const std::uint64_t first = run(a, ia);
-  const Points x1 = a.positions();
+  const Pts x1 = a.positions();
 
   a.set_positions(x0);
   a.set_velocities(v0);

@@ -20,7 +20,7 @@ namespace {
 
 using massspring::Dense;
 using massspring::Sparse;
-using Points = massspring::Points<double>;
+using Pts = massspring::Points<double>;
 using SystemD = massspring::MassSpringSystem<double, Dense>;
 using SystemS = massspring::MassSpringSystem<double, Sparse>;
 
@@ -132,7 +132,7 @@ TEST_CASE("Explicit Euler: pins stay put, Dense equals Sparse, no allocation in 
   massspring::SymplecticEuler<SystemS> is;
   id.precompute(d, 1e-3);
   is.precompute(s, 1e-3);
-  const Points pins0 = s.positions()(s.pinned(), Eigen::all);
+  const Pts pins0 = s.positions()(s.pinned(), Eigen::all);
   {
     massspring::test::CountAllocations count;
     for (int i = 0; i < 50; ++i) {
@@ -148,12 +148,12 @@ TEST_CASE("Explicit Euler: pins stay put, Dense equals Sparse, no allocation in 
 
 TEST_CASE("Explicit Euler: a non-finite result is reported and changes nothing") {
   auto s = massspring::test::oscillator<SystemS>(1, 1, 1, 0.1);
-  Points v = Points::Zero(2, 3);
+  Pts v = Pts::Zero(2, 3);
   v(1, 0) = 1e308;
   s.set_velocities(v);
   massspring::ForwardEuler<SystemS> fe;
   fe.precompute(s, 10.0);
-  const Points x0 = s.positions();
+  const Pts x0 = s.positions();
   const auto r = fe.step(s);
   CHECK_FALSE(r.ok());
   CHECK(s.positions() == x0);
@@ -169,7 +169,7 @@ TEST_CASE("Explicit Euler: refuses bad dt, step before precompute, a resized sys
   CHECK_THROWS_AS(fe.precompute(s, NAN), massspring::Error);
   fe.precompute(s, 0.1);
   auto bigger = massspring::test::oscillator<SystemS>(1, 1, 1, 0.1);
-  Points x = Points::Zero(3, 3);
+  Pts x = Pts::Zero(3, 3);
   x(1, 0) = 1;
   x(2, 0) = 2;
   SystemS three(x, massspring::Edges(0, 2), 1.0, 1.0);
@@ -181,7 +181,7 @@ TEST_CASE("Explicit Euler: refuses bad dt, step before precompute, a resized sys
 
 TEST_CASE("Every integrator steps a system with no points (nothing to do, not a crash)") {
   const auto check = [](auto integrator) {
-    SystemS s(Points(0, 3), massspring::Edges(0, 2), 1.0, 1.0);
+    SystemS s(Pts(0, 3), massspring::Edges(0, 2), 1.0, 1.0);
     integrator.precompute(s, 0.1);
     CHECK(integrator.step(s).ok());
     CHECK(s.num_points() == 0);

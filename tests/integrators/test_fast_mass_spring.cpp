@@ -840,6 +840,8 @@ TEST_CASE_TEMPLATE("accelerated local-global converges to the converged plain so
 // Peng et al. 2018, Algorithm 2, written out plainly: the history as lists of dense columns, the
 // least-squares problem by a dense LDLT, and the local-global map G(x) = x - Q_ff^-1 dE/dx_f (the
 // global step of the local step at x) with Q_ff assembled here from the masses and springs.
+namespace {
+
 struct ReferenceAnderson {
   const StepProblem& problem;
   Eigen::LDLT<Eigen::MatrixXd> q;  // Q on the free points (exact pins), one coordinate
@@ -930,6 +932,8 @@ struct ReferenceAnderson {
     return points(x);
   }
 };
+
+}  // namespace
 
 TEST_CASE_TEMPLATE(
     "Anderson's iterates are those of a plain implementation of Peng et al.'s Algorithm 2", System,

@@ -18,7 +18,7 @@ namespace {
 
 using massspring::FastMassSpring;
 using System = massspring::MassSpringSystem<double, massspring::Sparse>;
-using Points = massspring::Points<double>;
+using Pts = massspring::Points<double>;
 
 // The cloth of support/small_systems.hpp with the generator's default shear.
 System cloth(unsigned seed = 2) {
@@ -28,7 +28,7 @@ System cloth(unsigned seed = 2) {
 // A user's term: a linear tether to the origin, F = -c x (not constant: it depends on x).
 struct Tether {
   double c = 3;
-  void add_force(const massspring::ForceContext<double>& ctx, Points& f) const { f -= c * ctx.x; }
+  void add_force(const massspring::ForceContext<double>& ctx, Pts& f) const { f -= c * ctx.x; }
 };
 
 }  // namespace
@@ -101,10 +101,10 @@ TEST_CASE("FastMassSpring: with drag the energy still never increases over itera
 TEST_CASE("FastMassSpring: other terms act at the step's start (closed form, one free point)") {
   // One point, no springs: the step minimises m/(2h^2)|x - y|^2 - x . F(x^t) with y = x + h v, so
   // x' = x + h v + h^2/m F(x^t), v' = (x' - x)/h: symplectic Euler's position update.
-  Points x(1, 3);
+  Pts x(1, 3);
   x << 0.3, -0.2, 0.5;
   System s(x, massspring::Edges(0, 2), 2.0, 0.0);
-  Points v(1, 3);
+  Pts v(1, 3);
   v << 0.1, 0.4, -0.3;
   s.set_velocities(v);
   s.add_force(Tether{});
@@ -113,7 +113,7 @@ TEST_CASE("FastMassSpring: other terms act at the step's start (closed form, one
   const double h = 0.05;
   lg.precompute(s, h);
   REQUIRE(lg.step(s).ok());
-  const Points expect = x + h * v + h * h / 2.0 * (-3 * x);
+  const Pts expect = x + h * v + h * h / 2.0 * (-3 * x);
   CHECK((s.positions() - expect).cwiseAbs().maxCoeff() < 1e-15);
   CHECK((s.velocities() - (expect - x) / h).cwiseAbs().maxCoeff() < 1e-13);
 }

@@ -23,7 +23,7 @@ Scalar point_box_distance(const Vector3<Scalar>& p, const Vector3<Scalar>& h, Ve
     n = outside.cwiseProduct(p.cwiseSign()) / out;
     return out;
   }
-  int k = 0;
+  Eigen::Index k = 0;
   const Scalar inside = q.maxCoeff(&k);
   n = V3::Zero();
   n(k) = p(k) < 0 ? Scalar(-1) : Scalar(1);
