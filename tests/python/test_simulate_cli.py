@@ -1,0 +1,113 @@
+"""A scene stepped from Python equals massspring-simulate's trajectory bit for bit.
+
+The C++ side is the real binary (MASSSPRING_SIMULATE, set by ctest when the examples are built),
+writing its CSV trajectory with 17 significant digits (exact for doubles); the Python side loads
+the same file, adds the same force terms, configures the same integrator and steps the same
+number of frames. Every position and velocity of every frame must be the same double. The energy
+guard is off in the CLI (--guard-growth 0) so that both run the plain step loop."""
+
+import csv
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import massspring as ms
+from conftest import scene
+
+SIMULATE = os.environ.get("MASSSPRING_SIMULATE", "")
+
+pytestmark = pytest.mark.skipif(
+    not SIMULATE or not os.path.exists(SIMULATE),
+    reason="massspring-simulate not built (MASSSPRING_BUILD_EXAMPLES=OFF): set MASSSPRING_SIMULATE "
+           "to the binary to compare with it")
+
+# FOSSSim's integrator names (an XML scene's own) and the CLI's.
+INTEGRATORS = {
+    "fast-mass-spring": ms.FastMassSpring,
+    "forward-euler": ms.ForwardEuler,
+    "explicit-euler": ms.ForwardEuler,
+    "symplectic-euler": ms.SymplecticEuler,
+    "backward-euler": ms.BackwardEuler,
+    "implicit-euler": ms.BackwardEuler,
+    "linearized-backward-euler": ms.BackwardEuler,
+    "linearized-implicit-euler": ms.BackwardEuler,
+}
+
+
+def cli_trajectory(tmp_path, path, frames, args):
+    out = tmp_path / "trajectory.csv"
+    run = subprocess.run([SIMULATE, path, "--frames", str(frames), "--csv", str(out),
+                          "--guard-growth", "0", "--quiet"] + args,
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    with open(out, newline="") as handle:
+        rows = list(csv.reader(handle))
+    assert rows[0] == ["frame", "point", "x", "y", "z", "vx", "vy", "vz"]
+    data = np.array([[float(v) for v in row[2:]] for row in rows[1:]])  # float(): exact
+    return data.reshape(frames + 1, -1, 6)
+
+
+def python_trajectory(path, frames, integrator=None, dt=None, iterations=None,
+                      acceleration=None):
+    loaded = ms.load_scene_file(path)
+    s = loaded.system
+    if loaded.fosssim is None:
+        s.add_force(ms.Gravity([0, -9.8, 0]))  # the CLI's default --gravity 0,-9.8,0
+        integrator = integrator or "fast-mass-spring"
+        dt = dt or 1.0 / 30
+    else:  # an XML scene runs with its own integrator and dt unless told otherwise
+        integrator = integrator or loaded.fosssim.integrator
+        dt = dt or loaded.fosssim.dt
+    solver = INTEGRATORS[integrator]()
+    if isinstance(solver, ms.FastMassSpring):
+        if iterations:
+            solver.options.iterations = iterations
+        if acceleration:
+            solver.options.acceleration = acceleration
+    if isinstance(solver, ms.BackwardEuler) and integrator.startswith("linearized"):
+        solver.options.mode = ms.BackwardEulerMode.Linearized
+    solver.precompute(s, dt)
+    states = [np.hstack([s.positions, s.velocities])]
+    for _ in range(frames):
+        assert solver.step(s).ok()
+        states.append(np.hstack([s.positions, s.velocities]))
+    return np.array(states)
+
+
+CASES = [
+    # scene, frames, CLI arguments, python_trajectory keywords
+    ("flag.json", 10, [], {}),
+    ("flag.json", 10, ["--iterations", "10", "--acceleration", "chebyshev"],
+     {"iterations": 10, "acceleration": ms.Acceleration.Chebyshev}),
+    ("drape.json", 30, ["--iterations", "10"], {"iterations": 10}),  # plane and sphere colliders
+    ("table.json", 20, ["--iterations", "10", "--acceleration", "anderson"],
+     {"iterations": 10, "acceleration": ms.Acceleration.Anderson}),
+    ("chain.json", 20, ["--integrator", "backward-euler", "--dt", "0.01"],
+     {"integrator": "backward-euler", "dt": 0.01}),
+    ("net.json", 20, ["--integrator", "linearized-backward-euler", "--dt", "0.01"],
+     {"integrator": "linearized-backward-euler", "dt": 0.01}),
+    ("chain.json", 50, ["--integrator", "symplectic-euler", "--dt", "0.001"],
+     {"integrator": "symplectic-euler", "dt": 0.001}),
+    ("tilted.json", 40, ["--integrator", "symplectic-euler", "--dt", "0.0005"],
+     {"integrator": "symplectic-euler", "dt": 0.0005}),
+    ("orbit.xml", 200, [], {}),  # the scene's own integrator and dt
+    ("cantilever.xml", 100, [], {}),
+    ("orbit.xml", 100, ["--integrator", "forward-euler"], {"integrator": "forward-euler"}),
+]
+
+
+@pytest.mark.parametrize("name, frames, args, keywords", CASES,
+                         ids=[f"{c[0]}{'-' if c[2] else ''}{'-'.join(c[2][1::2])}" for c in CASES])
+def test_python_equals_the_cli_bit_for_bit(tmp_path, name, frames, args, keywords):
+    path = scene(name)
+    want = cli_trajectory(tmp_path, path, frames, args)
+    got = python_trajectory(path, frames, **keywords)
+    assert got.shape == want.shape
+    moved = np.abs(want[-1, :, :3] - want[0, :, :3]).max()
+    assert moved > 0  # the scene moved: the comparison is not of two copies of the start
+    differ = np.argwhere(got != want)
+    assert differ.size == 0, (
+        f"{len(differ)} values differ; first at frame {differ[0][0]}, point {differ[0][1]}, "
+        f"column {differ[0][2]}: Python {got[tuple(differ[0])]!r}, C++ {want[tuple(differ[0])]!r}")
