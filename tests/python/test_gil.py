@@ -4,8 +4,12 @@
    pause between two of its loop iterations is far shorter than the step (with the GIL held it
    would be the whole step). This holds on one core too.
 2. Two threads stepping two systems finish in less wall time than the same steps one after the
-   other (loosely: < 0.9 x; the best of three tries, as the machine is shared). Needs two cores."""
+   other (loosely: < 0.9 x; the best of up to six tries). The machine is shared: each try also
+   times two processes doing the same work, the speed-up the machine allows at that moment, and
+   a try in which processes are not clearly faster either is inconclusive (skipped if all are).
+   Needs two cores."""
 
+import multiprocessing
 import os
 import threading
 import time
@@ -59,31 +63,73 @@ def test_python_runs_while_a_step_runs():
     assert count > 1000
 
 
+def _step_in_child(steps, go, times):
+    """A forked process: its own cloth, stepped `steps` times after `go`; reports start and end."""
+    s, solver = cloth(20)
+    go.wait()
+    t0 = time.perf_counter()  # CLOCK_MONOTONIC: comparable between processes
+    for _ in range(steps):
+        solver.step(s)
+    times.put((t0, time.perf_counter()))
+
+
+def _two_processes(steps):
+    """Wall time of two processes stepping at once: what the machine allows two threads now."""
+    ctx = multiprocessing.get_context("fork")
+    go, times = ctx.Event(), ctx.Queue()
+    children = [ctx.Process(target=_step_in_child, args=(steps, go, times)) for _ in range(2)]
+    for c in children:
+        c.start()
+    time.sleep(0.2)  # both built their cloth
+    go.set()
+    spans = [times.get(timeout=120) for _ in children]
+    for c in children:
+        c.join()
+    return max(e for _, e in spans) - min(b for b, _ in spans)
+
+
 @pytest.mark.skipif(len(os.sched_getaffinity(0)) < 2, reason="needs two cores")
 def test_two_threads_beat_one_after_the_other():
+    """Two threads < 0.9 x one after the other. The machine is shared: when two processes doing
+    the same work are not clearly faster (< 0.75 x), no second core is free and the try says
+    nothing. The test passes on the first try that shows the threads' speed-up, fails when some
+    try had a free core for processes but no try showed it for the threads, and is skipped when
+    no try had a free core."""
     systems = [cloth(20), cloth(20)]
-    steps = 30
 
-    def run(k):
+    def run(k, steps):
         s, solver = systems[k]
         for _ in range(steps):
             assert solver.step(s).ok()
 
-    ratios = []
-    for _ in range(3):
+    t0 = time.perf_counter()
+    run(0, 10)
+    steps = max(10, int(10 * 0.25 / (time.perf_counter() - t0)))  # about 0.25 s per system
+    tries = []
+    for _ in range(6):
         t0 = time.perf_counter()
-        run(0)
-        run(1)
+        run(0, steps)
+        run(1, steps)
         sequential = time.perf_counter() - t0
-        threads = [threading.Thread(target=run, args=(k,)) for k in (0, 1)]
+        threads = [threading.Thread(target=run, args=(k, steps)) for k in (0, 1)]
         t0 = time.perf_counter()
         for t in threads:
             t.start()
         for t in threads:
             t.join()
-        ratios.append((time.perf_counter() - t0) / sequential)
-        if ratios[-1] < 0.9:
+        threaded = (time.perf_counter() - t0) / sequential
+        processes = _two_processes(steps) / sequential
+        tries.append((round(threaded, 3), round(processes, 3)))
+        print(f"threaded / sequential {threaded:.3f}, processes / sequential {processes:.3f} "
+              f"({steps} steps each)")
+        if threaded < 0.9:
             break
-    assert min(ratios) < 0.9, ratios
     for s, _ in systems:
         assert np.isfinite(s.positions).all()
+    if tries[-1][0] < 0.9:
+        return
+    if all(p >= 0.75 for _, p in tries):
+        pytest.skip(f"no free second core on this machine now (two processes were not clearly "
+                    f"faster either): (threads, processes) / sequential = {tries}")
+    pytest.fail(f"two threads did not beat one after the other while two processes did: "
+                f"(threads, processes) / sequential = {tries}")
