@@ -11,13 +11,13 @@ namespace massspring::python {
 
 namespace {
 
-// "float64 array of shape (4, 2)"
+// "array of dtype float64 and shape (4, 2)"
 std::string describe(const py::array& a) {
   std::string shape = "(";
   for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(a.shape(d));
   if (a.ndim() == 1) shape += ",";
   shape += ")";
-  return std::string(py::str(a.dtype())) + " array of shape " + shape;
+  return "array of dtype " + std::string(py::str(a.dtype())) + " and shape " + shape;
 }
 
 py::array as_array(py::handle obj, const std::string& what) {
@@ -57,7 +57,7 @@ py::array_t<long long, py::array::c_style> as_index(const py::array& a, const st
 AnyMatrix real_matrix(py::handle obj, const std::string& what, Eigen::Index cols) {
   const py::array a = as_array(obj, what);
   const std::string expected = "expected a real (float64) array of shape (#rows, " +
-                               std::to_string(cols) + "), got a " + describe(a);
+                               std::to_string(cols) + "), got an " + describe(a);
   if (!is_real(a)) throw Error(what + ": " + expected);
   if (a.ndim() != 2 || a.shape(1) != cols) {
     // an empty list has shape (0,): accept it as no rows
@@ -71,7 +71,7 @@ AnyMatrix real_matrix(py::handle obj, const std::string& what, Eigen::Index cols
 IndexMatrix index_matrix(py::handle obj, const std::string& what, Eigen::Index cols) {
   const py::array a = as_array(obj, what);
   const std::string expected = "expected an integer array of shape (#rows, " +
-                               std::to_string(cols) + "), got a " + describe(a);
+                               std::to_string(cols) + "), got an " + describe(a);
   if (a.ndim() == 1 && a.shape(0) == 0) return IndexMatrix(0, cols);
   if (!is_integer(a) || a.ndim() != 2 || a.shape(1) != cols) throw Error(what + ": " + expected);
   const auto d = as_index(a, what);
@@ -86,7 +86,7 @@ Vec real_vector(py::handle obj, const std::string& what, Eigen::Index size, bool
   const std::string want =
       size >= 0 ? "of shape (" + std::to_string(size) + ",)" : std::string("of one dimension");
   const std::string expected = "expected a real (float64) array " + want +
-                               (scalar_ok ? " or a number" : "") + ", got a " + describe(a);
+                               (scalar_ok ? " or a number" : "") + ", got an " + describe(a);
   if (!is_real(a)) throw Error(what + ": " + expected);
   if (a.ndim() == 0 && scalar_ok && size >= 0) return Vec::Constant(size, as_double(a).data()[0]);
   if (a.ndim() != 1 || (size >= 0 && a.shape(0) != size)) throw Error(what + ": " + expected);
@@ -98,7 +98,7 @@ std::vector<int> index_vector(py::handle obj, const std::string& what) {
   const py::array a = as_array(obj, what);
   if (a.ndim() == 1 && a.shape(0) == 0) return {};
   if (!is_integer(a) || a.ndim() != 1)
-    throw Error(what + ": expected a one-dimensional integer array, got a " + describe(a));
+    throw Error(what + ": expected a one-dimensional integer array, got an " + describe(a));
   const auto d = as_index(a, what);
   return std::vector<int>(d.data(), d.data() + a.shape(0));
 }
@@ -108,7 +108,7 @@ Vec3 vector3(py::handle obj, const std::string& what) { return real_vector(obj, 
 Eigen::Matrix3d matrix3(py::handle obj, const std::string& what) {
   const py::array a = as_array(obj, what);
   if (!is_real(a) || a.ndim() != 2 || a.shape(0) != 3 || a.shape(1) != 3)
-    throw Error(what + ": expected a real (float64) array of shape (3, 3), got a " + describe(a));
+    throw Error(what + ": expected a real (float64) array of shape (3, 3), got an " + describe(a));
   const auto d = as_double(a);
   return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.data());
 }

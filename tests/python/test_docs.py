@@ -32,8 +32,9 @@ def test_python_blocks_run(name, monkeypatch, capsys):
 def test_drape_example_writes_a_png(tmp_path):
     pytest.importorskip("matplotlib")
     png = tmp_path / "drape.png"
-    run = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "examples", "python", "drape.py"),
-                          "--frames", "40", "--iterations", "5", "--png", str(png)],
+    drape = os.path.join(SOURCE_DIR, "examples", "python", "drape.py")
+    run = subprocess.run([sys.executable, drape, "--frames", "40", "--iterations", "5", "--png",
+                          str(png)],
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     assert "961 points" in run.stdout

@@ -17,17 +17,19 @@ def test_error_is_a_value_error():
 
 @pytest.mark.parametrize("args, message", [
     ((V[:, :2], E, 1.0, 1.0), r"rest positions: expected a real \(float64\) array of shape "
-                              r"\(#rows, 3\), got a float64 array of shape \(3, 2\)"),
-    ((V.ravel(), E, 1.0, 1.0), r"rest positions: .* got a float64 array of shape \(9,\)"),
-    ((V.astype(str), E, 1.0, 1.0), r"rest positions: .* got a <U32 array"),
-    ((V.astype(complex), E, 1.0, 1.0), r"rest positions: .* got a complex128 array"),
+                              r"\(#rows, 3\), got an array of dtype float64 and shape \(3, 2\)"),
+    ((V.ravel(), E, 1.0, 1.0),
+     r"rest positions: .* got an array of dtype float64 and shape \(9,\)"),
+    ((V.astype(str), E, 1.0, 1.0), r"rest positions: .* got an array of dtype <U32"),
+    ((V.astype(complex), E, 1.0, 1.0), r"rest positions: .* got an array of dtype complex128"),
     ((V, E.astype(float), 1.0, 1.0), r"springs: expected an integer array of shape \(#rows, 2\), "
-                                     r"got a float64 array of shape \(2, 2\)"),
-    ((V, E[:, :1], 1.0, 1.0), r"springs: .* got a int64 array of shape \(2, 1\)"),
+                                     r"got an array of dtype float64 and shape \(2, 2\)"),
+    ((V, E[:, :1], 1.0, 1.0), r"springs: .* got an array of dtype int64 and shape \(2, 1\)"),
     ((V, np.array([[0, 2**40]]), 1.0, 1.0), r"springs: index values must fit a 32-bit int"),
     ((V, E, [1.0, 2.0], 1.0), r"masses: expected a real \(float64\) array of shape \(3,\) or a "
-                              r"number, got a float64 array of shape \(2,\)"),
-    ((V, E, 1.0, np.ones((2, 1))), r"stiffness: .* got a float64 array of shape \(2, 1\)"),
+                              r"number, got an array of dtype float64 and shape \(2,\)"),
+    ((V, E, 1.0, np.ones((2, 1))),
+     r"stiffness: .* got an array of dtype float64 and shape \(2, 1\)"),
     ((V, E, 1.0, "stiff"), r"stiffness: expected a real"),
     # the library's own checks, with its messages
     ((V, np.array([[0, 1], [1, 3]]), 1.0, 1.0),
@@ -45,8 +47,8 @@ def test_construction_errors(args, message):
 
 
 def test_rest_lengths_and_damping_checked_at_construction():
-    with pytest.raises(ms.Error, match=r"rest lengths: .* shape \(2,\), got a float64 array of "
-                                       r"shape \(3,\)"):
+    with pytest.raises(ms.Error, match=r"rest lengths: .* shape \(2,\), got an array of dtype "
+                                       r"float64 and shape \(3,\)"):
         ms.MassSpringSystem(V, E, 1.0, 1.0, rest_lengths=[1.0, 1.0, 1.0])
     with pytest.raises(ms.Error, match="spring 0"):
         ms.MassSpringSystem(V, E, 1.0, 1.0, damping=[-1.0, 0.0])
@@ -63,7 +65,8 @@ def test_setters_refuse_and_change_nothing(chain):
         chain.positions = x[:2]
     with pytest.raises(ms.Error, match=r"velocities: expected a real .* shape \(3,\)"):
         chain.velocities = np.zeros(3)
-    with pytest.raises(ms.Error, match=r"velocities: expected a real .* got a bool array"):
+    with pytest.raises(ms.Error,
+                       match=r"velocities: expected a real .* got an array of dtype bool"):
         chain.set_velocities(np.zeros((3, 3), dtype=bool))
     assert np.array_equal(chain.positions, x) and np.array_equal(chain.velocities, np.zeros((3, 3)))
     with pytest.raises(ms.Error, match="point 0"):
@@ -187,9 +190,14 @@ def test_scene_file_errors(tmp_path):
     bad.write_text('{"obj": "missing.obj"}')
     with pytest.raises(ms.Error, match="bad.json"):
         ms.load_scene(str(bad))
-    s = ms.load_scene(scene("chain.json"))
     with pytest.raises(ms.Error, match="positions: expected a real"):
         ms.write_obj(str(tmp_path / "x.obj"), np.zeros(3))
+    s = ms.load_scene(scene("chain.json"))
+    with pytest.raises(ms.Error, match=r"faces: expected a list of lists of point indices"):
+        ms.write_scene(s, str(tmp_path / "state.json"), faces="abc")
+    with pytest.raises(ms.Error, match=r"y.obj: vertex 0: position must be finite"):
+        ms.write_obj(str(tmp_path / "y.obj"), np.full((2, 3), np.nan))
+    assert not (tmp_path / "state.json").exists() and not (tmp_path / "y.obj").exists()
 
 
 def test_diagnostics_errors(chain):
