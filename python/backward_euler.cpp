@@ -26,7 +26,7 @@ void bind_backward_euler(py::module_& m) {
   c.def(py::init<>())
       .def(py::init<Options>(), py::arg("options"))
       .def_readwrite("options", &Solver::options, "The options (this solver's own).");
-  bind_integrator_calls<Solver>(c, [](Solver& s, System& system) { return s.step(system); });
+  bind_integrator_calls<Solver>(m, c, [](Solver& s, System& system) { return s.step(system); });
 }
 
 }  // namespace massspring::python

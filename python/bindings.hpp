@@ -78,7 +78,8 @@ void bind_fast_mass_spring(py::module_& m);      // fast_mass_spring.cpp
 void bind_explicit_integrators(py::module_& m);  // explicit_integrators.cpp
 void bind_backward_euler(py::module_& m);        // backward_euler.cpp
 void bind_scene_files(py::module_& m);           // scene_files.cpp
-void bind_diagnostics(py::module_& m);           // diagnostics.cpp
+void bind_diagnostics(py::module_& m);           // diagnostics.cpp (before the integrators)
+void bind_scenes(py::module_& m);                // scenes.cpp
 
 /// @brief The Python class of System (bound in system.cpp), to add methods from other files.
 inline py::class_<System> system_class(py::module_& m) {

@@ -1,5 +1,6 @@
-// Diagnostics (diagnostics/energy.hpp, diagnostics/stable_time_step.hpp): energies [J], momentum
-// [kg m/s], frequency bounds and the stable explicit time step [s] of the current state.
+// Diagnostics (diagnostics/energy.hpp, stable_time_step.hpp, divergence_guard.hpp): energies [J],
+// momentum [kg m/s], frequency bounds and the stable explicit time step [s] of the current state,
+// and DivergenceGuard (its step(integrator, system) is added by each integrator's file).
 
 #include "bindings.hpp"
 
@@ -45,6 +46,20 @@ void bind_diagnostics(py::module_& m) {
       py::arg("system"), py::arg("method") = ExplicitMethod::SymplecticEuler,
       py::arg("safety") = default_stability_safety,
       "safety x stability_limit(system, method) [s]; safety in (0, 1], default 0.5.");
+
+  using Guard = DivergenceGuard<System>;
+  py::class_<Guard>(m, "DivergenceGuard",
+                    "Undoes a step whose total energy passes E(0) + growth x scale "
+                    "(diagnostics/divergence_guard.hpp); massspring-simulate's --guard-growth.\n"
+                    "DivergenceGuard(system, growth=100); guard.step(integrator, system)")
+      .def(py::init(
+               [](const System& s, double growth) { return Guard(s, DivergenceOptions{growth}); }),
+           py::arg("system"), py::arg("growth") = DivergenceOptions{}.growth)
+      .def_property_readonly("initial_energy", &Guard::initial_energy, "E(0) [J].")
+      .def_property_readonly("scale", &Guard::scale, "The energy scale S [J].")
+      .def_property_readonly("limit", &Guard::limit, "E(0) + growth S [J].")
+      .def_property_readonly("energy", &Guard::energy,
+                             "Total energy after the last accepted step.");
 }
 
 }  // namespace massspring::python

@@ -14,40 +14,12 @@ namespace massspring::python {
 
 namespace {
 
-/// @brief An explicit integrator that leaves the system's buffers in place.
-template <class Integrator>
-struct KeepBuffers {
-  Integrator integrator;
-  Points x, v;  // the buffers swapped in for the step
-
-  void precompute(const System& system, double dt) { integrator.precompute(system, dt); }
-  [[nodiscard]] double dt() const { return integrator.dt(); }
-
-  StepReport step(System& system) {
-    x = system.positions();  // the same values in another buffer (allocates once)
-    v = system.velocities();
-    system.positions().swap(x);  // the system's own buffers wait in x, v
-    system.velocities().swap(v);
-    struct Restore {  // on return and on an exception alike
-      System& s;
-      Points &x, &v;
-      ~Restore() {
-        x = s.positions();  // the state the step left (or the one it started from)
-        v = s.velocities();
-        s.positions().swap(x);  // back into the system's own buffers
-        s.velocities().swap(v);
-      }
-    } restore{system, x, v};
-    return integrator.step(system);
-  }
-};
-
 template <class Integrator>
 void bind_explicit(py::module_& m, const char* name, const char* doc) {
   using Bound = KeepBuffers<Integrator>;
   py::class_<Bound> c(m, name, doc);
   c.def(py::init<>());
-  bind_integrator_calls<Bound>(c, [](Bound& b, System& system) { return b.step(system); });
+  bind_integrator_calls<Bound>(m, c, [](Bound& b, System& system) { return b.step(system); });
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ void bind_fast_mass_spring(py::module_& m) {
           "chebyshev_rho", [](const Solver& s) { return double(s.chebyshev_rho()); },
           "The rho Chebyshev uses (options' or the estimate; 0 before it is estimated).")
       .def_property_readonly("rejections", &Solver::rejections);
-  bind_integrator_calls<Solver>(c, [](Solver& s, System& system) { return s.step(system); });
+  bind_integrator_calls<Solver>(m, c, [](Solver& s, System& system) { return s.step(system); });
 }
 
 }  // namespace massspring::python

@@ -1,5 +1,6 @@
 // The module `massspring`: massspring.Error, StepReport, and each concept's file in order (the
-// system first: the force terms and colliders add methods to it).
+// system first: the force terms and colliders add methods to it; the diagnostics' DivergenceGuard
+// before the integrators, which add its step() for each of them).
 
 #include <massspring/version.hpp>
 
@@ -49,9 +50,10 @@ PYBIND11_MODULE(massspring, m) {
   bind_forces(m);
   bind_colliders(m);
   bind_step_report(m);
+  bind_diagnostics(m);  // DivergenceGuard, before the integrators add its step() for each
   bind_fast_mass_spring(m);
   bind_explicit_integrators(m);
   bind_backward_euler(m);
   bind_scene_files(m);
-  bind_diagnostics(m);
+  bind_scenes(m);
 }

@@ -38,3 +38,25 @@ def test_stable_time_step_of_one_spring():
 def test_nothing_limits_a_free_point():
     s = ms.MassSpringSystem([[0.0, 0, 0], [1, 0, 0]], [[0, 1]], 1.0, 0.0)
     assert math.isinf(ms.stable_time_step(s))
+
+
+def test_divergence_guard_undoes_a_step_that_blows_up():
+    """Forward Euler on an undamped spring gains energy every step (by (1 + h^2 w^2) per step);
+    with a tiny growth the guard refuses the first step that passes E(0) + growth x scale and
+    leaves the state as it was before that step."""
+    s = ms.MassSpringSystem([[0.0, 0, 0], [1.5, 0, 0]], [[0, 1]], 1.0, 100.0, rest_lengths=[1.0])
+    s.pin(0)
+    solver = ms.ForwardEuler()
+    solver.precompute(s, 0.05)
+    guard = ms.DivergenceGuard(s, 0.01)
+    assert guard.initial_energy == pytest.approx(0.5 * 100 * 0.25, rel=1e-15)
+    assert guard.limit == guard.initial_energy + 0.01 * guard.scale
+    for _ in range(1000):
+        x, v = s.positions.copy(), s.velocities.copy()
+        report = guard.step(solver, s)
+        if report.blew_up:
+            break
+        assert report.ok() and guard.energy <= guard.limit
+    assert report.blew_up and not report.ok()
+    assert np.array_equal(s.positions, x) and np.array_equal(s.velocities, v)
+    assert ms.total_energy(s) <= guard.limit

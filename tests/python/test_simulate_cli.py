@@ -3,8 +3,10 @@
 The C++ side is the real binary (MASSSPRING_SIMULATE, set by ctest when the examples are built),
 writing its CSV trajectory with 17 significant digits (exact for doubles); the Python side loads
 the same file, adds the same force terms, configures the same integrator and steps the same
-number of frames. Every position and velocity of every frame must be the same double. The energy
-guard is off in the CLI (--guard-growth 0) so that both run the plain step loop."""
+number of frames. Every position and velocity of every frame must be the same double. Most runs
+turn the CLI's energy guard off (--guard-growth 0) and step plainly; the runs marked `guard` keep
+the CLI's default (growth 100) and step through massspring.DivergenceGuard. Scenes are files, or
+generated (--generate cloth:20x15 against make_cloth)."""
 
 import csv
 import os
@@ -38,11 +40,13 @@ INTEGRATORS = {
 }
 
 
-def cli_trajectory(tmp_path, path, frames, args):
+def cli_trajectory(tmp_path, path, frames, args, guard=False):
     assert os.path.exists(SIMULATE), f"MASSSPRING_SIMULATE={SIMULATE}: no such file (build it)"
     out = tmp_path / "trajectory.csv"
-    run = subprocess.run([SIMULATE, path, "--frames", str(frames), "--csv", str(out),
-                          "--guard-growth", "0", "--quiet"] + args,
+    source = ["--generate", path[len("generate:"):]] if path.startswith("generate:") else [path]
+    run = subprocess.run([SIMULATE] + source + ["--frames", str(frames), "--csv", str(out),
+                                                "--quiet"]
+                         + ([] if guard else ["--guard-growth", "0"]) + args,
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     with open(out, newline="") as handle:
@@ -52,9 +56,31 @@ def cli_trajectory(tmp_path, path, frames, args):
     return data.reshape(frames + 1, -1, 6)
 
 
+def generated(spec):
+    """massspring-simulate's --generate KIND:SIZE, from Python."""
+    kind, size = spec.split(":")
+    if kind == "chain":
+        options = ms.ChainOptions()
+        options.points = int(size)
+        return ms.make_system(ms.make_chain(options))
+    options = ms.ClothOptions() if kind == "cloth" else ms.NetOptions()
+    options.columns, options.rows = (int(v) for v in size.split("x"))
+    return ms.make_system(ms.make_cloth(options) if kind == "cloth" else ms.make_net(options))
+
+
+class Generated:
+    """What load_scene_file gives, for a generated scene."""
+
+    def __init__(self, spec):
+        self.system, self.fosssim = generated(spec), None
+
+
 def python_trajectory(path, frames, integrator=None, dt=None, iterations=None,
-                      acceleration=None):
-    loaded = ms.load_scene_file(path)
+                      acceleration=None, guard=False):
+    if path.startswith("generate:"):
+        loaded = Generated(path[len("generate:"):])
+    else:
+        loaded = ms.load_scene_file(path)
     s = loaded.system
     if loaded.fosssim is None:
         s.add_force(ms.Gravity([0, -9.8, 0]))  # the CLI's default --gravity 0,-9.8,0
@@ -72,9 +98,11 @@ def python_trajectory(path, frames, integrator=None, dt=None, iterations=None,
     if isinstance(solver, ms.BackwardEuler) and integrator.startswith("linearized"):
         solver.options.mode = ms.BackwardEulerMode.Linearized
     solver.precompute(s, dt)
+    checked = ms.DivergenceGuard(s, 100.0) if guard else None
     states = [np.hstack([s.positions, s.velocities])]
     for _ in range(frames):
-        assert solver.step(s).ok()
+        report = checked.step(solver, s) if guard else solver.step(s)
+        assert report.ok()
         states.append(np.hstack([s.positions, s.velocities]))
     return np.array(states)
 
@@ -99,14 +127,29 @@ CASES = [
     ("orbit.xml", 200, [], {}),  # the scene's own integrator and dt
     ("cantilever.xml", 100, [], {}),
     ("orbit.xml", 100, ["--integrator", "forward-euler"], {"integrator": "forward-euler"}),
+    # the CLI's default energy guard, through massspring.DivergenceGuard
+    ("flag.json", 10, [], {"guard": True}),
+    ("orbit.xml", 100, ["--integrator", "symplectic-euler"],
+     {"integrator": "symplectic-euler", "guard": True}),
+    ("chain.json", 20, ["--integrator", "backward-euler", "--dt", "0.01"],
+     {"integrator": "backward-euler", "dt": 0.01, "guard": True}),
+    # generated scenes: make_cloth, make_chain, make_net
+    ("generate:cloth:20x15", 20, ["--iterations", "10"], {"iterations": 10}),
+    ("generate:chain:12", 30, ["--integrator", "symplectic-euler", "--dt", "0.001"],
+     {"integrator": "symplectic-euler", "dt": 0.001}),
+    ("generate:net:6x5", 20, [], {}),
 ]
 
 
-@pytest.mark.parametrize("name, frames, args, keywords", CASES,
-                         ids=[f"{c[0]}{'-' if c[2] else ''}{'-'.join(c[2][1::2])}" for c in CASES])
+def case_id(case):
+    name, _, args, keywords = case
+    return "-".join([name] + args[1::2] + (["guard"] if keywords.get("guard") else []))
+
+
+@pytest.mark.parametrize("name, frames, args, keywords", CASES, ids=[case_id(c) for c in CASES])
 def test_python_equals_the_cli_bit_for_bit(tmp_path, name, frames, args, keywords):
-    path = scene(name)
-    want = cli_trajectory(tmp_path, path, frames, args)
+    path = name if name.startswith("generate:") else scene(name)
+    want = cli_trajectory(tmp_path, path, frames, args, keywords.get("guard", False))
     got = python_trajectory(path, frames, **keywords)
     assert got.shape == want.shape
     moved = np.abs(want[-1, :, :3] - want[0, :, :3]).max()
