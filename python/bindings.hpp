@@ -9,8 +9,10 @@
 #include <pybind11/stl.h>  // in every file: the casters must be the same everywhere
 
 #include <Eigen/Core>
+#include <initializer_list>
 #include <massspring/massspring.hpp>
 #include <string>
+#include <vector>
 
 namespace massspring::python {
 
@@ -66,6 +68,27 @@ py::array_t<double> copy_array(const Eigen::DenseBase<Derived>& m, bool vector =
 /// @brief A read-only (n, 3) float64 view of `points` (row-major, so C-contiguous) that keeps
 /// `owner` alive: no copy. The view follows the buffer, so it shows later steps too.
 py::array_t<double> points_view(const Points& points, py::handle owner);
+
+// ---- objects in use by a call that released the GIL (module.cpp) -----------------------------
+
+/// @brief Marks a system and an integrator (or guard) as in use while a call runs without the GIL,
+/// so that a call on one of them from another thread raises massspring.Error instead of racing
+/// (one system and one integrator per thread). Made and destroyed with the GIL held: make it
+/// before the py::gil_scoped_release.
+class InUse {
+ public:
+  InUse(std::initializer_list<const void*> objects, const char* what);
+  ~InUse();
+  InUse(const InUse&) = delete;
+  InUse& operator=(const InUse&) = delete;
+
+ private:
+  std::vector<const void*> objects_;
+};
+
+/// @brief Throws massspring.Error when `object` is in use by a call in another thread (`what`
+/// names the refused call). With the GIL held.
+void check_idle(const void* object, const char* what);
 
 // ---- the parts of the module, each in its own file --------------------------------------------
 

@@ -131,7 +131,11 @@ box and mesh; the set_* methods validate, change the collider and return it (cha
   py::class_<System> system = system_class(m);
   system
       .def(
-          "add_collider", [](System& s, const Collider& k) { return s.add_collider(k); },
+          "add_collider",
+          [](System& s, const Collider& k) {
+            check_idle(&s, "add_collider");
+            return s.add_collider(k);
+          },
           py::arg("collider"), "Adds a copy of the collider; returns its index.")
       .def_property_readonly("num_colliders", [](const System& s) { return s.colliders().size(); })
       .def(
@@ -139,7 +143,10 @@ box and mesh; the set_* methods validate, change the collider and return it (cha
           py::arg("i"), "A copy of collider i.")
       .def(
           "set_collider",
-          [](System& s, int i, const Collider& k) { s.colliders()[check_collider(s, i)] = k; },
+          [](System& s, int i, const Collider& k) {
+            check_idle(&s, "set_collider");
+            s.colliders()[check_collider(s, i)] = k;
+          },
           py::arg("i"), py::arg("collider"),
           "Replaces collider i (e.g. a copy given a new pose or velocity between steps).")
       .def(
@@ -149,7 +156,12 @@ box and mesh; the set_* methods validate, change the collider and return it (cha
           },
           py::arg("i"), "The impulse [N s] collider i gave the points in the last step.")
       .def(
-          "clear_colliders", [](System& s) { s.colliders().clear(); }, "Removes every collider.");
+          "clear_colliders",
+          [](System& s) {
+            check_idle(&s, "clear_colliders");
+            s.colliders().clear();
+          },
+          "Removes every collider.");
 }
 
 }  // namespace massspring::python

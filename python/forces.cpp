@@ -33,8 +33,12 @@ std::vector<GravitationalAttraction::Pair> attraction_pairs(const py::handle& pa
 template <class Term>
 void add_force_overload(py::class_<System>& system) {
   system.def(
-      "add_force", [](System& s, const Term& term) { return s.add_force(term); }, py::arg("term"),
-      "Adds a copy of the force term; returns its index in forces. New revision.");
+      "add_force",
+      [](System& s, const Term& term) {
+        check_idle(&s, "add_force");
+        return s.add_force(term);
+      },
+      py::arg("term"), "Adds a copy of the force term; returns its index in forces. New revision.");
 }
 
 }  // namespace

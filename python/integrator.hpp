@@ -39,21 +39,31 @@ struct KeepBuffers {
 /// @brief Adds precompute, step and dt to an integrator class, and DivergenceGuard.step for it
 /// (the guard must be bound first). `Step` is how the binding steps
 /// (the integrator's own step(), or one that keeps the system's buffers: explicit_integrators.cpp).
-/// Never share one system between threads: step() writes it without the GIL.
+/// step() and precompute() run without the GIL; a second thread's call on the same system or
+/// integrator meanwhile raises massspring.Error (InUse).
 template <class Integrator, class Class, class Step>
 void bind_integrator_calls(py::module_& m, Class& c, Step step) {
   using Guard = DivergenceGuard<System>;
   c.def(
        "precompute",
        [](Integrator& integrator, const System& system, double dt) {
+         const InUse busy({&integrator, &system}, "precompute");
+         const py::gil_scoped_release release;
          integrator.precompute(system, dt);
        },
-       py::arg("system"), py::arg("dt"), py::call_guard<py::gil_scoped_release>(),
+       py::arg("system"), py::arg("dt"),
        "Sets the time step dt [s] and prepares for the system (factorises where the method "
-       "does). Call it again after the number of points changes.")
-      .def("step", step, py::arg("system"), py::call_guard<py::gil_scoped_release>(),
-           "One step of dt; returns a StepReport. A failed step (report.ok() false) leaves the "
-           "system as it was. The GIL is released while it runs.")
+       "does). Call it again after the number of points changes. The GIL is released.")
+      .def(
+          "step",
+          [step](Integrator& integrator, System& system) {
+            const InUse busy({&integrator, &system}, "step");
+            const py::gil_scoped_release release;
+            return step(integrator, system);
+          },
+          py::arg("system"),
+          "One step of dt; returns a StepReport. A failed step (report.ok() false) leaves the "
+          "system as it was. The GIL is released while it runs.")
       .def_property_readonly(
           "dt", [](const Integrator& integrator) { return double(integrator.dt()); },
           "The time step [s] of the last precompute().");
@@ -68,9 +78,11 @@ void bind_integrator_calls(py::module_& m, Class& c, Step step) {
           const Step& s;
           StepReport step(System& system) { return s(i, system); }
         } bound{integrator, step};
+        const InUse busy({&g, &integrator, &system}, "step");
+        const py::gil_scoped_release release;
         return g.step(bound, system);
       },
-      py::arg("integrator"), py::arg("system"), py::call_guard<py::gil_scoped_release>(),
+      py::arg("integrator"), py::arg("system"),
       "One step of the integrator, checked: a step whose total energy passes limit (or that is "
       "not finite) is undone and reported (blew_up, finite).");
 }

@@ -3,10 +3,36 @@
 // before the integrators, which add its step() for each of them).
 
 #include <massspring/version.hpp>
+#include <unordered_set>
 
 #include "bindings.hpp"
 
 namespace massspring::python {
+
+namespace {
+// Objects in use by a call that released the GIL; read and written with the GIL held only.
+std::unordered_set<const void*>& in_use() {
+  static std::unordered_set<const void*> objects;
+  return objects;
+}
+}  // namespace
+
+void check_idle(const void* object, const char* what) {
+  if (in_use().count(object))
+    throw Error(detail::message(what,
+                                ": the system or integrator is in use by a step in another "
+                                "thread (use one system and one integrator per thread)"));
+}
+
+InUse::InUse(std::initializer_list<const void*> objects, const char* what) {
+  for (const void* o : objects) check_idle(o, what);
+  for (const void* o : objects)
+    if (in_use().insert(o).second) objects_.push_back(o);
+}
+
+InUse::~InUse() {
+  for (const void* o : objects_) in_use().erase(o);
+}
 
 void bind_errors(py::module_& m) {
   // massspring::Error -> massspring.Error, a ValueError carrying the library's message.

@@ -10,13 +10,19 @@ namespace massspring::python {
 
 namespace {
 
+// The system, after checking that no step in another thread is using it (bindings.hpp, InUse).
+System& idle(System& s, const char* what) {
+  check_idle(&s, what);
+  return s;
+}
+
 // sys.positions = x and sys.set_positions(x): any (rows, 3) real array; the library checks the
 // row count and finiteness and names the point.
 void set_positions(System& s, const py::handle& x) {
-  s.set_positions(real_matrix(x, "positions", 3));
+  idle(s, "set_positions").set_positions(real_matrix(x, "positions", 3));
 }
 void set_velocities(System& s, const py::handle& v) {
-  s.set_velocities(real_matrix(v, "velocities", 3));
+  idle(s, "set_velocities").set_velocities(real_matrix(v, "velocities", 3));
 }
 
 }  // namespace
@@ -69,66 +75,76 @@ Invalid input raises massspring.Error and builds nothing.)doc");
   c.def_property(
       "masses", [](const System& s) { return copy_array(s.masses(), true); },
       [](System& s, const py::handle& x) {
-        s.set_masses(real_vector(x, "masses", s.num_points(), true));
+        idle(s, "set_masses").set_masses(real_vector(x, "masses", s.num_points(), true));
       },
       "(n,) masses [kg] (a copy); assigning refactorises at the next implicit step.");
   c.def_property(
       "stiffness", [](const System& s) { return copy_array(s.stiffness(), true); },
       [](System& s, const py::handle& x) {
-        s.set_stiffness(real_vector(x, "stiffness", s.num_springs(), true));
+        idle(s, "set_stiffness").set_stiffness(real_vector(x, "stiffness", s.num_springs(), true));
       },
       "(m,) stiffness [N/m] (a copy).");
   c.def_property(
       "rest_lengths", [](const System& s) { return copy_array(s.rest_lengths(), true); },
       [](System& s, const py::handle& x) {
-        s.set_rest_lengths(real_vector(x, "rest lengths", s.num_springs(), true));
+        idle(s, "set_rest_lengths")
+            .set_rest_lengths(real_vector(x, "rest lengths", s.num_springs(), true));
       },
       "(m,) rest lengths [m] (a copy); free to change between steps.");
   c.def_property(
       "damping", [](const System& s) { return copy_array(s.damping(), true); },
       [](System& s, const py::handle& x) {
-        s.set_damping(real_vector(x, "damping", s.num_springs(), true));
+        idle(s, "set_damping").set_damping(real_vector(x, "damping", s.num_springs(), true));
       },
       "(m,) damping along each spring [N s/m] (a copy).");
   c.def(
       "set_masses",
       [](System& s, const py::handle& x) {
-        s.set_masses(real_vector(x, "masses", s.num_points(), true));
+        idle(s, "set_masses").set_masses(real_vector(x, "masses", s.num_points(), true));
       },
       py::arg("masses"));
   c.def(
       "set_stiffness",
       [](System& s, const py::handle& x) {
-        s.set_stiffness(real_vector(x, "stiffness", s.num_springs(), true));
+        idle(s, "set_stiffness").set_stiffness(real_vector(x, "stiffness", s.num_springs(), true));
       },
       py::arg("stiffness"));
   c.def(
       "set_rest_lengths",
       [](System& s, const py::handle& x) {
-        s.set_rest_lengths(real_vector(x, "rest lengths", s.num_springs(), true));
+        idle(s, "set_rest_lengths")
+            .set_rest_lengths(real_vector(x, "rest lengths", s.num_springs(), true));
       },
       py::arg("rest_lengths"));
   c.def(
       "set_damping",
       [](System& s, const py::handle& x) {
-        s.set_damping(real_vector(x, "damping", s.num_springs(), true));
+        idle(s, "set_damping").set_damping(real_vector(x, "damping", s.num_springs(), true));
       },
       py::arg("damping"));
 
   // pins
   c.def(
-      "pin", [](System& s, int i) { s.pin(i); }, py::arg("i"),
+      "pin", [](System& s, int i) { idle(s, "pin").pin(i); }, py::arg("i"),
       "Pins point i at its rest position.");
   c.def(
-      "pin", [](System& s, int i, const py::handle& t) { s.pin(i, vector3(t, "pin target")); },
+      "pin",
+      [](System& s, int i, const py::handle& t) {
+        idle(s, "pin").pin(i, vector3(t, "pin target"));
+      },
       py::arg("i"), py::arg("target"), "Pins point i at target [m] (or moves its target).");
   c.def(
-      "pin", [](System& s, const py::handle& points) { s.pin(index_vector(points, "pin")); },
+      "pin",
+      [](System& s, const py::handle& points) { idle(s, "pin").pin(index_vector(points, "pin")); },
       py::arg("points"), "Pins each listed point at its rest position.");
-  c.def("unpin", &System::unpin, py::arg("i"), "Releases point i (no-op when not pinned).");
+  c.def(
+      "unpin", [](System& s, int i) { idle(s, "unpin").unpin(i); }, py::arg("i"),
+      "Releases point i (no-op when not pinned).");
   c.def(
       "set_pin_target",
-      [](System& s, int i, const py::handle& t) { s.set_pin_target(i, vector3(t, "pin target")); },
+      [](System& s, int i, const py::handle& t) {
+        idle(s, "set_pin_target").set_pin_target(i, vector3(t, "pin target"));
+      },
       py::arg("i"), py::arg("target"), "Moves the target of pinned point i [m]; free.");
   c.def_property_readonly(
       "pinned", [](const System& s) { return s.pinned(); }, "Pinned point indices, ascending.");
@@ -142,6 +158,7 @@ Invalid input raises massspring.Error and builds nothing.)doc");
   c.def_property(
       "positions",
       [](const py::object& self) {
+        check_idle(&self.cast<const System&>(), "positions");  // a step may run elsewhere
         return points_view(self.cast<const System&>().positions(), self);
       },
       &set_positions,
@@ -150,6 +167,7 @@ Invalid input raises massspring.Error and builds nothing.)doc");
   c.def_property(
       "velocities",
       [](const py::object& self) {
+        check_idle(&self.cast<const System&>(), "velocities");
         return points_view(self.cast<const System&>().velocities(), self);
       },
       &set_velocities,
@@ -167,7 +185,9 @@ Invalid input raises massspring.Error and builds nothing.)doc");
         return names;
       },
       "The names of the force terms added with add_force, in order.");
-  c.def("clear_forces", &System::clear_forces, "Removes every added force term.");
+  c.def(
+      "clear_forces", [](System& s) { idle(s, "clear_forces").clear_forces(); },
+      "Removes every added force term.");
   c.def_property_readonly("has_spring_damping", &System::has_spring_damping);
   c.def_property_readonly("revision", &System::revision,
                           "Changes whenever masses, stiffness, springs, pins or forces change.");

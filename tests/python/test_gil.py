@@ -133,3 +133,42 @@ def test_two_threads_beat_one_after_the_other():
                     f"faster either): (threads, processes) / sequential = {tries}")
     pytest.fail(f"two threads did not beat one after the other while two processes did: "
                 f"(threads, processes) / sequential = {tries}")
+
+
+def test_a_system_in_use_by_a_step_is_refused_elsewhere():
+    """While a step runs without the GIL, the same system or solver used from another thread
+    raises massspring.Error (instead of racing); other systems are free; afterwards all is free."""
+    s, solver = cloth(10)
+    start = time.perf_counter()
+    solver.step(s)
+    solver.options.iterations = max(10, int(10 * 0.3 / (time.perf_counter() - start)))
+    other, other_solver = cloth(5)
+    started, done = threading.Event(), threading.Event()
+
+    def work():
+        started.set()
+        solver.step(s)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    started.wait()
+    time.sleep(0.05)  # inside the step
+    refused = []
+    for call in (lambda: solver.step(s), lambda: ms.FastMassSpring().step(s),
+                 lambda: solver.step(other), lambda: s.positions, lambda: s.velocities,
+                 lambda: s.set_positions(np.zeros((s.num_points, 3))),
+                 lambda: s.pin(5), lambda: s.add_force(ms.LinearDrag(1.0)),
+                 lambda: s.add_collider(ms.Collider.sphere([0, 0, 0], 1.0))):
+        try:
+            call()
+        except ms.Error as e:
+            refused.append("in use by a step in another thread" in str(e))
+    busy = not done.is_set()
+    assert other_solver.step(other).ok()  # another system and solver: free
+    thread.join()
+    print(f"busy {busy}, refused {refused}")
+    if busy:  # the step outlasted the checks (it takes ~0.3 s; the checks microseconds)
+        assert refused == [True] * 9
+    assert solver.step(s).ok() and s.positions.shape == (1600, 3)
+    assert s.forces == ["gravity"] and s.num_colliders == 0 and s.pinned == [0, 39]
