@@ -191,6 +191,26 @@ Invalid input raises massspring.Error and builds nothing.)doc");
   c.def_property_readonly("has_spring_damping", &System::has_spring_damping);
   c.def_property_readonly("revision", &System::revision,
                           "Changes whenever masses, stiffness, springs, pins or forces change.");
+  // copies: the model, the state, the force terms, the colliders (not shared with the original)
+  c.def(
+      "copy",
+      [](const System& s) {
+        check_idle(&s, "copy");
+        return System(s);
+      },
+      "An independent copy (model, state, force terms, colliders), e.g. to run two solvers from "
+      "one state.");
+  c.def("__copy__", [](const System& s) {
+    check_idle(&s, "copy");
+    return System(s);
+  });
+  c.def(
+      "__deepcopy__",
+      [](const System& s, const py::dict&) {
+        check_idle(&s, "copy");
+        return System(s);
+      },
+      py::arg("memo"));
   c.def("__repr__", [](const System& s) {
     return detail::message("MassSpringSystem(", s.num_points(), " points, ", s.num_springs(),
                            " springs, ", s.num_pinned(), " pinned, ", s.forces().size(),
