@@ -14,6 +14,8 @@ packages=(
   libbenchmark-dev                  # benchmarks
   libsuitesparse-dev                # benchmarks: CHOLMOD compared (optional for the library)
   python3 python3-matplotlib        # rendering pictures of frames
+  pybind11-dev python3-dev python3-numpy  # the Python module (python/)
+  python3-pytest                    # the Python module's tests (tests/python/)
   clang libclang-rt-14-dev          # fuzzing (scripts/fuzz.sh): clang++ and libFuzzer
 )
 

@@ -22,7 +22,8 @@ set(common -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_BUILD_TY
 
 # 1. Install (header-only: configuring is all the building there is).
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/library ${common}
-    -DMASSSPRING_BUILD_TESTS=OFF -DMASSSPRING_BUILD_EXAMPLES=OFF -DMASSSPRING_BUILD_BENCHMARKS=OFF)
+    -DMASSSPRING_BUILD_TESTS=OFF -DMASSSPRING_BUILD_EXAMPLES=OFF -DMASSSPRING_BUILD_BENCHMARKS=OFF
+    -DMASSSPRING_BUILD_PYTHON=OFF)
 run(${CMAKE_COMMAND} --install ${WORK_DIR}/library --prefix ${prefix})
 foreach(file include/massspring/massspring.hpp include/massspring/io.hpp
              share/cmake/massspring/massspringConfig.cmake

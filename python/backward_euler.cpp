@@ -1,0 +1,32 @@
+// massspring.BackwardEuler (integrators/backward_euler.hpp) and BackwardEulerOptions with the C++
+// field names. It assigns the system's positions and velocities in place (same size: no new
+// buffer), so the views of them stay valid.
+
+#include "integrator.hpp"
+
+namespace massspring::python {
+
+void bind_backward_euler(py::module_& m) {
+  using Solver = BackwardEuler<System>;
+  using Options = BackwardEulerOptions<double>;
+  py::enum_<BackwardEulerMode>(m, "BackwardEulerMode")
+      .value("Linearized", BackwardEulerMode::Linearized)
+      .value("Newton", BackwardEulerMode::Newton);
+
+  py::class_<Options>(m, "BackwardEulerOptions", "BackwardEuler's options; read at every step.")
+      .def(py::init<>())
+      .def_readwrite("mode", &Options::mode, "Linearized (one Newton step) or Newton.")
+      .def_readwrite("max_iterations", &Options::max_iterations, "Newton: most iterations (>= 1).")
+      .def_readwrite("tolerance", &Options::tolerance,
+                     "Newton: stop when max |dx| <= tolerance (1 + max |x|).")
+      .def_readwrite("line_search", &Options::line_search, "Newton: backtracking line search.");
+
+  py::class_<Solver> c(m, "BackwardEuler",
+                       "Implicit Euler on (M - h dF/dv - h^2 dF/dx), linearised or Newton.");
+  c.def(py::init<>())
+      .def(py::init<Options>(), py::arg("options"))
+      .def_readwrite("options", &Solver::options, "The options (this solver's own).");
+  bind_integrator_calls<Solver>(m, c, [](Solver& s, System& system) { return s.step(system); });
+}
+
+}  // namespace massspring::python

@@ -1,0 +1,36 @@
+// massspring.ForwardEuler, SymplecticEuler and RK4 (integrators/). They have no options in C++,
+// so none here.
+//
+// The C++ integrators end a step by swapping their work buffers with the system's positions and
+// velocities (no copy). A numpy view of sys.positions points at the system's buffer, which after
+// such a swap would belong to the integrator (and die with it). So the binding steps the system
+// with its own buffers swapped out and copies the result back into them: the views always show
+// the system's state and live as long as the system. The copies (2 x n x 3 doubles per array)
+// change no value: the trajectory is the C++ one bit for bit.
+
+#include "integrator.hpp"
+
+namespace massspring::python {
+
+namespace {
+
+template <class Integrator>
+void bind_explicit(py::module_& m, const char* name, const char* doc) {
+  using Bound = KeepBuffers<Integrator>;
+  py::class_<Bound> c(m, name, doc);
+  c.def(py::init<>());
+  bind_integrator_calls<Bound>(m, c, [](Bound& b, System& system) { return b.step(system); });
+}
+
+}  // namespace
+
+void bind_explicit_integrators(py::module_& m) {
+  bind_explicit<ForwardEuler<System>>(
+      m, "ForwardEuler",
+      "Explicit Euler: x += h v, v += h M^-1 F(x, v) (both from the old state).");
+  bind_explicit<SymplecticEuler<System>>(
+      m, "SymplecticEuler", "Symplectic Euler: v += h M^-1 F(x, v), then x += h v (the new v).");
+  bind_explicit<RK4<System>>(m, "RK4", "Classical fourth-order Runge-Kutta.");
+}
+
+}  // namespace massspring::python

@@ -1,0 +1,90 @@
+#pragma once
+/// @file
+/// @brief What every integrator's binding shares: precompute(system, dt) and step(system), with the
+/// GIL released while the C++ runs (two Python threads step two systems at once).
+
+#include "bindings.hpp"
+
+namespace massspring::python {
+
+/// @brief An explicit integrator that leaves the system's buffers in place (see
+/// explicit_integrators.cpp: the C++ ones swap their work buffers with the system's).
+template <class Integrator>
+struct KeepBuffers {
+  Integrator integrator;
+  Points x, v;  // the buffers swapped in for the step
+
+  void precompute(const System& system, double dt) { integrator.precompute(system, dt); }
+  [[nodiscard]] double dt() const { return integrator.dt(); }
+
+  StepReport step(System& system) {
+    x = system.positions();  // the same values in another buffer (allocates once)
+    v = system.velocities();
+    system.positions().swap(x);  // the system's own buffers wait in x, v
+    system.velocities().swap(v);
+    struct Restore {  // on return and on an exception alike
+      System& s;
+      Points &x, &v;
+      ~Restore() {
+        x = s.positions();  // the state the step left (or the one it started from)
+        v = s.velocities();
+        s.positions().swap(x);  // back into the system's own buffers
+        s.velocities().swap(v);
+      }
+    } restore{system, x, v};
+    return integrator.step(system);
+  }
+};
+
+/// @brief Adds precompute, step and dt to an integrator class, and DivergenceGuard.step for it
+/// (the guard must be bound first). `Step` is how the binding steps
+/// (the integrator's own step(), or one that keeps the system's buffers: explicit_integrators.cpp).
+/// step() and precompute() run without the GIL; a second thread's call on the same system or
+/// integrator meanwhile raises massspring.Error (InUse).
+template <class Integrator, class Class, class Step>
+void bind_integrator_calls(py::module_& m, Class& c, Step step) {
+  using Guard = DivergenceGuard<System>;
+  c.def(
+       "precompute",
+       [](Integrator& integrator, const System& system, double dt) {
+         const InUse busy({&integrator, &system}, "precompute");
+         const py::gil_scoped_release release;
+         integrator.precompute(system, dt);
+       },
+       py::arg("system"), py::arg("dt"),
+       "Sets the time step dt [s] and prepares for the system (factorises where the method "
+       "does). Call it again after the number of points changes. The GIL is released.")
+      .def(
+          "step",
+          [step](Integrator& integrator, System& system) {
+            const InUse busy({&integrator, &system}, "step");
+            const py::gil_scoped_release release;
+            return step(integrator, system);
+          },
+          py::arg("system"),
+          "One step of dt; returns a StepReport. A failed step (report.ok() false) leaves the "
+          "system as it was. The GIL is released while it runs.")
+      .def_property_readonly(
+          "dt", [](const Integrator& integrator) { return double(integrator.dt()); },
+          "The time step [s] of the last precompute().");
+  // DivergenceGuard.step(integrator, system) for this integrator (diagnostics.cpp binds the
+  // guard): instantiated here, where the integrator's step() is compiled anyway.
+  py::class_<Guard> guard = py::reinterpret_borrow<py::class_<Guard>>(m.attr("DivergenceGuard"));
+  guard.def(
+      "step",
+      [step](Guard& g, Integrator& integrator, System& system) {
+        struct Bound {  // what DivergenceGuard::step calls: integrator.step(system)
+          Integrator& i;
+          const Step& s;
+          StepReport step(System& system) { return s(i, system); }
+        } bound{integrator, step};
+        const InUse busy({&g, &integrator, &system}, "step");
+        const py::gil_scoped_release release;
+        return g.step(bound, system);
+      },
+      py::arg("integrator"), py::arg("system"),
+      "One step of the integrator, checked: a step whose total energy passes limit (or that is "
+      "not finite) is undone and reported (blew_up, finite).");
+}
+
+}  // namespace massspring::python

@@ -1,0 +1,104 @@
+// Generated scenes (scene/cloth.hpp, chain.hpp, net.hpp) and make_system (scene/make_system.hpp):
+// the C++ generators' options with their field names, a SceneDescription to read or change, and
+// the system made from it exactly as massspring-simulate --generate makes it.
+
+#include "bindings.hpp"
+
+namespace massspring::python {
+
+namespace {
+
+using Scene = SceneDescription<double>;
+
+}  // namespace
+
+void bind_scenes(py::module_& m) {
+  py::class_<Scene>(m, "SceneDescription",
+                    "A scene before it is a system: vertices [m], faces, edges, pinned points, "
+                    "stiffness [N/m], mass [kg] (None: Voronoi areas), colliders.")
+      .def(py::init<>())
+      .def_property(
+          "vertices", [](const Scene& s) { return copy_array(s.vertices); },
+          [](Scene& s, const py::handle& v) { s.vertices = real_matrix(v, "vertices", 3); },
+          "(n, 3) rest positions [m] (a copy; assign a whole array).")
+      .def_readwrite("faces", &Scene::faces, "Polygons, 0-based; their sides become springs.")
+      .def_property(
+          "edges",
+          [](const Scene& s) {
+            py::array_t<int> out({s.edges.rows(), Eigen::Index(2)});
+            std::copy(s.edges.data(), s.edges.data() + s.edges.size(), out.mutable_data());
+            return out;
+          },
+          [](Scene& s, const py::handle& e) { s.edges = index_matrix(e, "edges", 2); },
+          "(k, 2) springs besides the faces' (a copy; assign a whole array).")
+      .def_readwrite("pinned", &Scene::pinned, "Pinned points, 0-based.")
+      .def_readwrite("stiffness", &Scene::stiffness, "Every spring's stiffness [N/m].")
+      .def_readwrite("mass", &Scene::mass, "Every point's mass [kg], or None: Voronoi masses.")
+      .def_property_readonly(
+          "num_colliders", [](const Scene& s) { return int(s.colliders.size()); },
+          "Colliders the scene describes (made by make_system).");
+
+  py::enum_<ClothShear>(m, "ClothShear")
+      .value("None_", ClothShear::None)  // None is a Python keyword
+      .value("One", ClothShear::One)
+      .value("Both", ClothShear::Both);
+  py::enum_<ClothPins>(m, "ClothPins")
+      .value("None_", ClothPins::None)
+      .value("TopCorners", ClothPins::TopCorners)
+      .value("TopEdge", ClothPins::TopEdge);
+  py::enum_<ClothPlane>(m, "ClothPlane")
+      .value("Vertical", ClothPlane::Vertical)
+      .value("Horizontal", ClothPlane::Horizontal);
+  py::enum_<ChainPins>(m, "ChainPins")
+      .value("None_", ChainPins::None)
+      .value("First", ChainPins::First)
+      .value("BothEnds", ChainPins::BothEnds);
+  py::enum_<NetPins>(m, "NetPins")
+      .value("None_", NetPins::None)
+      .value("Corners", NetPins::Corners)
+      .value("Border", NetPins::Border);
+
+  py::class_<ClothOptions>(m, "ClothOptions", "make_cloth's options (scene/cloth.hpp).")
+      .def(py::init<>())
+      .def_readwrite("columns", &ClothOptions::columns)
+      .def_readwrite("rows", &ClothOptions::rows)
+      .def_readwrite("width", &ClothOptions::width, "[m]")
+      .def_readwrite("height", &ClothOptions::height, "[m]")
+      .def_readwrite("shear", &ClothOptions::shear)
+      .def_readwrite("bending", &ClothOptions::bending)
+      .def_readwrite("pins", &ClothOptions::pins)
+      .def_readwrite("plane", &ClothOptions::plane)
+      .def_readwrite("stiffness", &ClothOptions::stiffness, "[N/m]")
+      .def_readwrite("mass", &ClothOptions::mass, "[kg] per point, or None: Voronoi masses");
+  py::class_<ChainOptions>(m, "ChainOptions", "make_chain's options (scene/chain.hpp).")
+      .def(py::init<>())
+      .def_readwrite("points", &ChainOptions::points)
+      .def_readwrite("length", &ChainOptions::length, "[m]")
+      .def_property(
+          "direction", [](const ChainOptions& o) { return copy_array(o.direction, true); },
+          [](ChainOptions& o, const py::handle& d) { o.direction = vector3(d, "direction"); },
+          "(a copy: assign the whole vector)")
+      .def_readwrite("pins", &ChainOptions::pins)
+      .def_readwrite("stiffness", &ChainOptions::stiffness, "[N/m]")
+      .def_readwrite("mass", &ChainOptions::mass, "[kg] per point");
+  py::class_<NetOptions>(m, "NetOptions", "make_net's options (scene/net.hpp).")
+      .def(py::init<>())
+      .def_readwrite("columns", &NetOptions::columns)
+      .def_readwrite("rows", &NetOptions::rows)
+      .def_readwrite("width", &NetOptions::width, "[m]")
+      .def_readwrite("depth", &NetOptions::depth, "[m]")
+      .def_readwrite("pins", &NetOptions::pins)
+      .def_readwrite("stiffness", &NetOptions::stiffness, "[N/m]")
+      .def_readwrite("mass", &NetOptions::mass, "[kg] per point");
+
+  m.def("make_cloth", &make_cloth, py::arg("options") = ClothOptions{},
+        "A rectangular cloth (a SceneDescription).");
+  m.def("make_chain", &make_chain, py::arg("options") = ChainOptions{}, "A chain of points.");
+  m.def("make_net", &make_net, py::arg("options") = NetOptions{}, "A horizontal net.");
+  m.def(
+      "make_system", [](const Scene& scene) { return make_system<System>(scene); },
+      py::arg("scene"),
+      "The MassSpringSystem of a scene (masses, springs from faces and edges, pins, colliders).");
+}
+
+}  // namespace massspring::python
