@@ -135,6 +135,64 @@ inline std::vector<std::pair<std::string, io::FosssimScene>> project_fosssim_sce
     }
     scenes.emplace_back("damping_series", s);
   }
+
+  // Theme 2: the same box of balls under each collision response the course defines. A floor and
+  // two walls (half-planes, one with a normal of length 2: the course does not require unit
+  // normals), a fixed ramp (an edge of radius 0.05 m between two fixed particles) and 12 balls of
+  // radius 0.15 m (0.5 kg) dropped onto it with a spring-joined pair (k = 200 N/m) among them;
+  // gravity 9.81 m/s^2, symplectic Euler, 4 s. COR 0.7 for the impulse responses.
+  for (const io::FosssimCollision type :
+       {io::FosssimCollision::Simple, io::FosssimCollision::Penalty,
+        io::FosssimCollision::ContinuousTime, io::FosssimCollision::Hybrid}) {
+    io::FosssimScene s;
+    const std::string kind = io::to_string(type);
+    s.description =
+        "Twelve balls and a spring-joined pair dropped onto a fixed ramp in a box; "
+        "collision response: " +
+        kind + ".";
+    s.integrator = io::FosssimIntegrator::SymplecticEuler;
+    // The penalty response's stiff springs (k = 10^4 N/m) take dt = 0.5 ms: at 2 ms symplectic
+    // Euler pumps energy into the bounces, and a softer k lets a falling ball through the floor.
+    s.dt = type == io::FosssimCollision::Penalty ? 0.0005 : 0.002;
+    s.duration = 4;
+    const int a = add_particle(s, 1, -1.6, 1.4, 0, 0, true);  // the ramp's ends
+    const int b = add_particle(s, 1, 0.4, 0.6, 0, 0, true);
+    const Eigen::Index ramp = s.edges.rows();
+    s.edges.conservativeResize(ramp + 1, 2);
+    s.edges.row(ramp) << a, b;
+    s.radii = {0.05, 0.05};
+    s.edge_radii = {0.05};
+    for (int i = 0; i < 12; ++i) {
+      const double x = -1.5 + 0.27 * i + 0.04 * std::sin(3.0 * i);
+      const double y = 2.4 + 0.45 * (i % 3) + 0.1 * std::cos(5.0 * i);
+      add_particle(s, 0.5, x, y, 0.3 * std::sin(7.0 * i), 0);
+      s.radii.push_back(0.15);
+    }
+    const int p = add_particle(s, 0.5, 1.0, 4.0, -0.5, 0);
+    const int q = add_particle(s, 0.5, 1.5, 4.2, -0.5, 0);
+    s.radii.push_back(0.12);
+    s.radii.push_back(0.12);
+    add_spring(s, p, q, 200, 0.2);
+    s.edge_radii.push_back(0.015);
+    s.gravity = Vector3<double>(0, -9.81, 0);
+    s.halfplanes.push_back({Vector3<double>(0, 0, 0), Vector3<double>(0, 1, 0)});   // the floor
+    s.halfplanes.push_back({Vector3<double>(-2, 0, 0), Vector3<double>(2, 0, 0)});  // left wall
+    s.halfplanes.push_back({Vector3<double>(2, 0, 0), Vector3<double>(-1, 0, 0)});  // right wall
+    io::FosssimScene::Collision c;
+    c.type = type;
+    c.cor = 0.7;
+    if (type == io::FosssimCollision::Penalty) {
+      c.k = 10000;
+      c.thickness = 0.01;
+    } else if (type == io::FosssimCollision::Hybrid) {
+      c.k = 1000;
+      c.thickness = 0.01;
+      c.max_iterations = 20;
+    }
+    s.collision = c;
+    s.contest = true;
+    scenes.emplace_back("balls_" + std::string(kind == "continuous-time" ? "continuous" : kind), s);
+  }
   return scenes;
 }
 

@@ -66,6 +66,16 @@ for scene in drape table tilted mesh; do
     --png "$images/ex_$scene.png" --gif "$images/ex_$scene.gif" --fps 10
 done
 
+# FOSSSim Theme 2 (docs/contact.md): the same box of balls with each collision response, 4 s.
+for kind in simple penalty continuous hybrid; do
+  dt=0.002 every=25
+  [ "$kind" = penalty ] && dt=0.0005 every=100  # its stiff penalty springs take a shorter step
+  "$simulate" "examples/scenes_xml/balls_$kind.xml" --every "$every" --out "$out/balls_$kind"
+  render "$out/balls_$kind" --dt "$dt" --panels 4 --size 2.4 \
+    --scene "examples/scenes_xml/balls_$kind.xml" --png "$images/ex_balls_$kind.png" \
+    --gif "$images/ex_balls_$kind.gif" --fps 12
+done
+
 # A flag wound onto a turning pole (examples/pole.cpp): pins moved with the pole, dt = 2 ms, 5 s.
 "$build/examples/massspring-pole" --out "$out/pole" --every 50
 render "$out/pole" --dt 0.002 --panels 4 --size 2.4 --scene "$out/pole/pole.json" \

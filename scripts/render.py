@@ -16,7 +16,9 @@ seconds, and --until T spreads the PNG's panels over 0..T s (where the motion is
 whole run. In 3D, points that never move (pinned) are marked, and the axes are labelled in metres.
 --scene SCENE.json draws the scene's "colliders" (docs/scenes.md) in grey under the cloth: planes,
 spheres, capsules, boxes and meshes, moved by their velocities to each frame's time (with --dt;
-without it they are drawn where the scene puts them).
+without it they are drawn where the scene puts them). --scene SCENE.xml (a 2D FOSSSim scene) draws
+its particles as discs of their radii, its edges as capsules of theirs, and its half-planes shaded
+on their solid side.
 Needs python3-matplotlib (Debian).
 """
 
@@ -25,13 +27,15 @@ import json
 import math
 import pathlib
 import sys
+import xml.etree.ElementTree as ElementTree
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import animation  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
+from matplotlib.collections import LineCollection, PatchCollection  # noqa: E402
+from matplotlib.patches import Circle, Polygon  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
 
@@ -255,20 +259,71 @@ def is_flat(runs):
     return all(v[2] == 0 for frames in runs for vertices, _, _ in frames for v in vertices)
 
 
-def bounds_2d(runs):
-    xs = [v[0] for frames in runs for vertices, _, _ in frames for v in vertices]
-    ys = [v[1] for frames in runs for vertices, _, _ in frames for v in vertices]
+def read_scene_2d(path):
+    """A FOSSSim XML scene's particle radii, edge radii and half-planes (the course's defaults:
+    radius 0.1 m, edge radius 0.015 m)."""
+    root = ElementTree.parse(path).getroot()
+    radii = [float(p.get("radius", 0.1)) for p in root.iter("particle")]
+    edge_radii = [float(e.get("radius", 0.015)) for e in root.iter("edge")]
+    planes = [tuple(float(h.get(a, 0)) for a in ("px", "py", "nx", "ny"))
+              for h in root.iter("halfplane")]
+    return {"radii": radii, "edge_radii": edge_radii, "halfplanes": planes}
+
+
+def bounds_2d(runs, scene2d=None):
+    radii = scene2d["radii"] if scene2d else []
+    def r(p):
+        return radii[p] if p < len(radii) else 0.0
+    xs = [v[0] + s * r(p) for frames in runs for vertices, _, _ in frames
+          for p, v in enumerate(vertices) for s in (-1, 1)]
+    ys = [v[1] + s * r(p) for frames in runs for vertices, _, _ in frames
+          for p, v in enumerate(vertices) for s in (-1, 1)]
     pad = 0.06 * max(max(xs) - min(xs), max(ys) - min(ys), 1e-3)
     return (min(xs) - pad, max(xs) + pad), (min(ys) - pad, max(ys) + pad)
 
 
-def draw_2d(ax, runs, index, limits, title, labels, trails):
-    """Frame `index` of every run, overlaid; trails of the moving points up to it."""
+def draw_scene_2d(ax, scene2d, vertices, edges, limits, colour):
+    """Half-planes shaded on their solid side; edges as capsules and particles as discs of their
+    radii (data units)."""
+    (x0, x1), (y0, y1) = limits
+    far = 4 * max(x1 - x0, y1 - y0)
+    for px, py, nx, ny in scene2d["halfplanes"]:
+        n = math.hypot(nx, ny)
+        nx, ny = nx / n, ny / n
+        tx, ty = -ny, nx  # along the boundary
+        corners = [(px + far * tx, py + far * ty), (px - far * tx, py - far * ty),
+                   (px - far * tx - far * nx, py - far * ty - far * ny),
+                   (px + far * tx - far * nx, py + far * ty - far * ny)]
+        ax.add_patch(Polygon(corners, closed=True, facecolor="#d9d9d9", edgecolor="#7f7f7f",
+                             linewidth=0.8, zorder=1))
+    patches = []
+    edge_radii = scene2d["edge_radii"]
+    for e, (i, j) in enumerate(edges):
+        r = edge_radii[e] if e < len(edge_radii) else 0.015
+        (ax_, ay), (bx, by) = vertices[i][:2], vertices[j][:2]
+        length = math.hypot(bx - ax_, by - ay)
+        if length > 0:
+            ox, oy = -(by - ay) / length * r, (bx - ax_) / length * r
+            patches.append(Polygon([(ax_ + ox, ay + oy), (bx + ox, by + oy),
+                                    (bx - ox, by - oy), (ax_ - ox, ay - oy)], closed=True))
+        patches += [Circle((ax_, ay), r), Circle((bx, by), r)]
+    radii = scene2d["radii"]
+    patches += [Circle((v[0], v[1]), radii[p] if p < len(radii) else 0.1)
+                for p, v in enumerate(vertices)]
+    ax.add_collection(PatchCollection(patches, facecolor=colour, edgecolor="none", alpha=0.55,
+                                      zorder=2))
+
+
+def draw_2d(ax, runs, index, limits, title, labels, trails, scene2d=None):
+    """Frame `index` of every run, overlaid; trails of the moving points up to it; with scene2d
+    (read_scene_2d), the radii and half-planes."""
     ax.cla()
     for r, frames in enumerate(runs):
         colour = COLOURS[r % len(COLOURS)]
         k = min(index, len(frames) - 1)
         vertices, _, edges = frames[k]
+        if scene2d:
+            draw_scene_2d(ax, scene2d, vertices, edges, limits, colour)
         if trails and k > 0:
             for p in range(len(vertices)):
                 path = [frames[f][0][p] for f in range(k + 1)]
@@ -339,9 +394,11 @@ def main():
     parser.add_argument("--size", type=float, default=3.2, help="panel size in inches (3.2)")
     parser.add_argument("--scene", type=pathlib.Path,
                         help="3D: draw this JSON scene's colliders (moved to each frame's time "
-                             "with --dt)")
+                             "with --dt); 2D: this XML scene's radii and half-planes")
     args = parser.parse_args()
-    colliders = read_colliders(args.scene) if args.scene else ()
+    xml_scene = args.scene is not None and args.scene.suffix.lower() == ".xml"
+    scene2d = read_scene_2d(args.scene) if xml_scene else None
+    colliders = read_colliders(args.scene) if args.scene and not xml_scene else ()
 
     runs, names = [], []
     for folder in args.frames:
@@ -374,7 +431,7 @@ def main():
     if args.lengths:
         plot_lengths(args.lengths, frames, args.frame_time)
     if flat:
-        limits = bounds_2d(runs)
+        limits = bounds_2d(runs, scene2d)
         if args.png:
             count = max(1, min(args.panels, count_all))
             picks = [round(k * (count_all - 1) / max(count - 1, 1)) for k in range(count)]
@@ -382,7 +439,7 @@ def main():
                                      squeeze=False)
             for panel, index in enumerate(picks):
                 draw_2d(axes[0][panel], runs, index, limits, title(index),
-                        labels if panel == 0 else None, args.trails)
+                        labels if panel == 0 else None, args.trails, scene2d)
             fig.tight_layout()
             fig.savefig(args.png, dpi=90)
             plt.close(fig)
@@ -390,7 +447,8 @@ def main():
         if args.gif:
             fig, ax = plt.subplots(figsize=(args.size * 1.25, args.size * 1.25))
             movie = animation.FuncAnimation(
-                fig, lambda k: draw_2d(ax, runs, k, limits, title(k), labels, args.trails),
+                fig, lambda k: draw_2d(ax, runs, k, limits, title(k), labels, args.trails,
+                                       scene2d),
                 frames=count_all)
             movie.save(args.gif, writer=animation.PillowWriter(fps=args.fps))
             plt.close(fig)
