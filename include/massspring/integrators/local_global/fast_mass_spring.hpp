@@ -22,6 +22,7 @@
 #include "massspring/integrators/local_global/anderson.hpp"
 #include "massspring/integrators/local_global/chebyshev.hpp"
 #include "massspring/integrators/local_global/contact_projection.hpp"
+#include "massspring/integrators/local_global/fill_ordering.hpp"
 #include "massspring/integrators/local_global/guarded_loop.hpp"
 #include "massspring/integrators/local_global/inertial_term.hpp"
 #include "massspring/integrators/local_global/options.hpp"
@@ -30,7 +31,6 @@
 #include "massspring/integrators/local_global/spring_pass.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/cholesky_concept.hpp"
-#include "massspring/storage/nested_dissection.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
 
@@ -210,27 +210,10 @@ class FastMassSpring {
                            exact ? "" : detail::message(", penalty weight = ", weight_), ")");
   }
 
-  // Factorises Q in the order options.ordering asks for (see FillOrdering).
+  // Factorises Q in the order options.ordering asks for (fill_ordering.hpp).
   bool factorise(const System& system) {
-    if constexpr (cholesky_has_ordered_compute<Cholesky, Matrix>::value) {
-      if (options.ordering != FillOrdering::Solver) {
-        const int nr = reduced_.nr;
-        Eigen::Matrix<double, Eigen::Dynamic, 3> xyz(nr, 3);
-        for (int r = 0; r < nr; ++r)
-          xyz.row(r) =
-              system.rest_positions().row(reduced_.free[std::size_t(r)]).template cast<double>();
-        const Graph graph = graph_of(q_);
-        std::size_t dissected = 0;  // nnz(L) in that order
-        std::vector<int> order = nested_dissection(xyz, graph, {}, &dissected);
-        if (options.ordering == FillOrdering::Auto) {
-          std::vector<int> own = Cholesky::ordering_of(q_);
-          if (cholesky_nonzeros(graph, own) <= dissected) order.swap(own);
-        }
-        return llt_.compute(q_, order);
-      }
-    }
-    (void)system;
-    return llt_.compute(q_);
+    return local_global::factorise_in_order(llt_, q_, options.ordering, system.rest_positions(),
+                                            reduced_.free);
   }
 
   // The solver's threads and the SIMD choice (substitutions, share pass) to the options'
