@@ -70,11 +70,14 @@ class LinearSolver<Dense, Scalar> {
  public:
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
-  /// @brief Prepares for matrices of A's size (allocates the factor storage).
+  /// @brief Prepares for matrices of A's size (allocates the factor storage). The factorisations
+  /// are computed once on the identity of that size: Eigen's size constructors leave their info
+  /// uninitialised, and copying such an object reads it (UBSan: an invalid ComputationInfo).
   void analyze(const Matrix& a) {
-    llt_ = Eigen::LLT<Matrix>(a.rows());
-    ldlt_ = Eigen::LDLT<Matrix>(a.rows());
-    lu_ = Eigen::PartialPivLU<Matrix>(a.rows());
+    const Matrix identity = Matrix::Identity(a.rows(), a.rows());
+    llt_.compute(identity);
+    ldlt_.compute(identity);
+    lu_.compute(identity);
   }
   /// @brief Factorises A. @return false when no factorisation succeeded.
   bool factorize(const Matrix& a, bool symmetric, bool fallback = true) {
