@@ -13,6 +13,8 @@
 // assignment's flag and skirt when ../shared/scenes/jacobson is there.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <massspring/integrators/fast_mass_spring.hpp>
@@ -77,6 +79,60 @@ void step(benchmark::State& state, const Scene& scene, bool simd) {
   state.counters["springs"] = system.num_springs();
 }
 
+// Pair/<scene>: the two steps above alternated inside one loop (which goes first alternates too),
+// each timed on its own; the counter share_over_baseline is the median of the per-pair ratios,
+// which a machine whose speed drifts between repetitions moves much less than two medians.
+void pair(benchmark::State& state, const Scene& scene) {
+  struct Arm {
+    explicit Arm(const System& s) : system(s) {}
+    System system;
+    massspring::FastMassSpring<System, WideCholesky> solver;
+  };
+  const auto make = [&scene](bool simd) {
+    auto arm = std::make_unique<Arm>(*scene.system);
+    arm->solver.options.iterations = 50;
+    arm->solver.options.pins = massspring::PinMode::Penalty;
+    arm->system.add_force(massspring::ConstantForce<double>({0, -9.8, 0}));
+    arm->solver.options.simd = simd;
+    arm->solver.precompute(arm->system, 1.0 / 30);
+    return arm;
+  };
+  const std::unique_ptr<Arm> share = make(true), baseline = make(false);
+  const System start = share->system;
+  const auto timed = [&start](Arm& arm) {
+    arm.system.positions() = start.positions();
+    arm.system.velocities() = start.velocities();
+    const auto t0 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(arm.solver.step(arm.system));
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  std::vector<double> ratios, share_s, baseline_s;
+  bool share_first = true;
+  for (auto _ : state) {
+    double a = 0, b = 0;
+    if (share_first) {
+      a = timed(*share);
+      b = timed(*baseline);
+    } else {
+      b = timed(*baseline);
+      a = timed(*share);
+    }
+    share_first = !share_first;
+    state.SetIterationTime(a + b);
+    ratios.push_back(a / b);
+    share_s.push_back(a);
+    baseline_s.push_back(b);
+  }
+  const auto median = [](std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["share_over_baseline"] = median(ratios);
+  state.counters["share_ms"] = 1e3 * median(share_s);
+  state.counters["baseline_ms"] = 1e3 * median(baseline_s);
+}
+
 void pass(benchmark::State& state, const Scene& scene, bool simd) {
   const System& system = *scene.system;
   const int n = system.num_points();
@@ -115,6 +171,12 @@ void pass(benchmark::State& state, const Scene& scene, bool simd) {
 
 int main(int argc, char** argv) {
   static const std::vector<Scene> scenes = load_scenes();
+  for (const Scene& scene : scenes)
+    benchmark::RegisterBenchmark(("Pair/" + scene.name).c_str(),
+                                 [&scene](benchmark::State& s) { pair(s, scene); })
+        ->Unit(benchmark::kMillisecond)
+        ->UseManualTime()
+        ->Iterations(100);
   for (const Scene& scene : scenes)
     for (const bool simd : {true, false}) {
       const std::string kind = simd ? "share" : "baseline";
