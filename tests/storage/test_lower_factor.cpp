@@ -1,16 +1,12 @@
 // storage/lower_factor.hpp: forward and back substitution against Eigen's triangular solves, in
 // double and float, on the SSE2 rows and on the AVX2 + FMA rows (where the CPU has them), the row
-// copy, the choice between the two, and a right-hand side assembled inside the forward
-// substitution (a row source: local_global::ShareRows, the solver's).
+// copy and the choice between the two.
 #include <doctest/doctest.h>
 
-#include <algorithm>
-#include <cstdint>
-#include <massspring/integrators/local_global/share_pass.hpp>
+#include <cstddef>
 #include <massspring/storage/lower_factor.hpp>
 #include <massspring/storage/sparse.hpp>
-#include <random>
-#include <utility>
+#include <type_traits>
 #include <vector>
 
 #include "support/random_spd.hpp"
@@ -135,97 +131,4 @@ TEST_CASE("LowerFactorRows refuses a column that does not start with its diagona
   const int good_inner[] = {0, 1};
   CHECK(rows.build(2, outer, good_inner, value));
   CHECK(rows.inv_diag[0] == doctest::Approx(2.0));
-}
-
-TEST_CASE_TEMPLATE(
-    "LowerFactor: a right-hand side assembled inside the forward substitution gives the solve of "
-    "the assembled one, bit for bit",
-    Scalar, float, double) {
-  using Rows = Eigen::Matrix<Scalar, Eigen::Dynamic, 3, Eigen::RowMajor>;
-  const int n = 300;
-  const auto q = random_spd<Scalar>(n, 1200, 11);
-  massspring::SparseCholesky<Scalar> llt;
-  REQUIRE(llt.compute(q));
-  // Shares as FastMassSpring makes them: one per pair (a, b), a < b, sorted by (a, b); added to
-  // row a (a run of consecutive shares), subtracted from row b (listed in share order). Rows
-  // with no share, with shares only as a, only as b, and with both occur.
-  std::mt19937 rng(3);
-  std::uniform_int_distribution<int> index(0, n - 1);
-  std::uniform_real_distribution<double> value(-1.0, 1.0);
-  std::vector<std::pair<int, int>> pairs;
-  for (int e = 0; e < 700; ++e) {
-    const int i = index(rng), j = index(rng);
-    if (i != j && i % 7 != 0 && j % 7 != 0) pairs.emplace_back(std::min(i, j), std::max(i, j));
-  }
-  std::sort(pairs.begin(), pairs.end());
-  const int m = int(pairs.size());
-  // Four Scalars per share from an aligned address (32 bytes); the fourth holds 7, which must not
-  // reach the result.
-  std::vector<Scalar> storage(std::size_t(4 * m + 8));
-  Scalar* shares = storage.data();
-  while (reinterpret_cast<std::uintptr_t>(shares) % 32 != 0) ++shares;
-  for (int e = 0; e < m; ++e) {
-    for (int c = 0; c < 3; ++c) shares[4 * e + c] = Scalar(value(rng));
-    shares[4 * e + 3] = Scalar(7);
-  }
-  std::vector<int> plus_begin(std::size_t(n) + 1, 0), minus_begin(std::size_t(n) + 1, 0);
-  for (const auto& [a, b] : pairs) {
-    ++plus_begin[std::size_t(a) + 1];
-    ++minus_begin[std::size_t(b) + 1];
-  }
-  for (std::size_t r = 0; r < std::size_t(n); ++r) {
-    plus_begin[r + 1] += plus_begin[r];
-    minus_begin[r + 1] += minus_begin[r];
-  }
-  std::vector<int> minus_share(std::size_t(m), 0);
-  std::vector<int> next(minus_begin.begin(), minus_begin.end() - 1);
-  for (int e = 0; e < m; ++e)
-    minus_share[std::size_t(next[std::size_t(pairs[std::size_t(e)].second)]++)] = e;
-  int kinds[4] = {};  // rows by (has a run, has a subtraction)
-  for (int r = 0; r < n; ++r)
-    ++kinds[2 * (plus_begin[r + 1] > plus_begin[r]) + (minus_begin[r + 1] > minus_begin[r])];
-  for (const int k : kinds) CHECK(k > 0);
-
-  const Rows base = Rows::Random(n, 3);
-  massspring::local_global::ShareRows<Scalar> rhs;
-  rhs.base = base.data();
-  rhs.shares = shares;
-  rhs.plus_begin = plus_begin.data();
-  rhs.minus_begin = minus_begin.data();
-  rhs.minus_share = minus_share.data();
-
-  // row() against an independent sum (in double): base + run - subtracted, within rounding.
-  Rows assembled(n, 3);
-  for (int r = 0; r < n; ++r) rhs.row(r, assembled.row(r).data());
-  Eigen::MatrixX3d expected = base.template cast<double>();
-  for (int e = 0; e < m; ++e)
-    for (int c = 0; c < 3; ++c) {
-      expected(pairs[std::size_t(e)].first, c) += double(shares[4 * e + c]);
-      expected(pairs[std::size_t(e)].second, c) -= double(shares[4 * e + c]);
-    }
-  // A handful of additions of values below 2 in magnitude: a few units of the last place.
-  const double tol = std::is_same_v<Scalar, float> ? 1e-5 : 1e-14;
-  CHECK((assembled.template cast<double>() - expected).cwiseAbs().maxCoeff() <= tol);
-
-  for (const bool avx2 : {false, true}) {
-    CAPTURE(avx2);
-    llt.set_avx2(avx2);
-    for (const int threads : {1, 2}) {
-#ifndef _OPENMP
-      if (threads > 1) continue;
-#endif
-      CAPTURE(threads);
-      llt.set_threads(threads);
-      Rows solved = assembled;
-      llt.solve_in_place(solved.data());
-      Rows fused = Rows::Constant(n, 3, Scalar(-3));  // not read: any contents
-      llt.solve_in_place(fused.data(), rhs);
-      CHECK(fused == solved);
-      // Forward substitution alone, through the view.
-      Rows z = assembled, zf(n, 3);
-      llt.lower().forward(z.data());
-      llt.lower().forward(zf.data(), &rhs);
-      CHECK(zf == z);
-    }
-  }
 }

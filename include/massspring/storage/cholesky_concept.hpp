@@ -16,9 +16,7 @@
 ///   `static std::vector<int> ordering_of(const Matrix& q)`: a given elimination order
 ///   (FillOrdering::NestedDissection, FillOrdering::Auto);
 /// - `void set_threads(int)`, `int threads() const`: substitutions on several threads;
-/// - `void set_avx2(bool)`: allow the SIMD substitution;
-/// - `template <class Rows> void solve_in_place(Scalar* w, const Rows& rhs)`: the right-hand
-///   side read from a row source inside the forward substitution (see detail::is_row_source).
+/// - `void set_avx2(bool)`: allow the SIMD substitution.
 /// SparseCholesky, DenseCholesky and CholmodCholesky provide these.
 
 #include <Eigen/Core>
@@ -80,15 +78,6 @@ template <class C, class = void>
 struct cholesky_has_simd : std::false_type {};
 template <class C>
 struct cholesky_has_simd<C, std::void_t<decltype(std::declval<C&>().set_avx2(true))>>
-    : std::true_type {};
-
-/// @brief Has solve_in_place(w, rows) for the row source Rows.
-template <class C, class Scalar, class Rows, class = void>
-struct cholesky_has_row_source_solve : std::false_type {};
-template <class C, class Scalar, class Rows>
-struct cholesky_has_row_source_solve<C, Scalar, Rows,
-                                     std::void_t<decltype(std::declval<const C&>().solve_in_place(
-                                         std::declval<Scalar*>(), std::declval<const Rows&>()))>>
     : std::true_type {};
 
 /// @brief Fails to compile, saying what is missing, unless C has the required members above.

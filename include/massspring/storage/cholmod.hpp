@@ -133,12 +133,6 @@ class CholmodCholesky {
   }
   /// @brief w = (P Q P^T)^-1 w, w row-major #rows x 3 in the factor's order. No allocation.
   void solve_in_place(Scalar* w) const { lower().solve(w); }
-  /// @brief w = (P Q P^T)^-1 rhs, assembled inside the forward substitution (see
-  /// SparseCholesky::solve_in_place).
-  template <class Rows>
-  void solve_in_place(Scalar* w, const Rows& rhs) const {
-    lower().solve(w, &rhs);
-  }
   /// @brief x = Q^-1 b for a #rows by 3 right-hand side. No allocation; b and x may be the same.
   void solve(const Eigen::Ref<const Points<Scalar>>& b, Eigen::Ref<Points<Scalar>> x) {
     const int n = int(rows());

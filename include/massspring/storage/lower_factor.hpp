@@ -2,14 +2,11 @@
 /// @file
 /// @brief detail::LowerFactor and detail::LowerFactorRows: forward and back substitution with a
 /// sparse Cholesky factor L for three right-hand sides at once, in place, allocation-free, with
-/// an AVX2 + FMA version chosen at run time (storage/lower_factor_simd.hpp). The forward
-/// substitution may take its right-hand side from a row source, row by row as it reaches each row
-/// (see LowerFactor::forward_rows), instead of from w.
+/// an AVX2 + FMA version chosen at run time (storage/lower_factor_simd.hpp).
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <type_traits>
 #include <vector>
 #ifdef _OPENMP
 #include <omp.h>
@@ -20,22 +17,6 @@
 
 namespace massspring {
 namespace detail {
-
-/// @brief The row source of a substitution whose right-hand side is in w already.
-struct RightHandSideInPlace {};
-
-/// @brief Whether Rows is a row source that LowerFactor's forward substitution can read a
-/// right-hand side from, row by row: it must have `void row(int i, Scalar* out) const` (row i's
-/// three values) and, for the AVX2 rows, `template <class R> typename R::V row_simd(int i) const`
-/// returning the same three values, rounded the same way, in a detail::Row3<Scalar> register
-/// (fourth lane 0), compiled with MASSSPRING_TARGET_AVX2.
-template <class Rows, class Scalar, class = void>
-struct is_row_source : std::false_type {};
-template <class Rows, class Scalar>
-struct is_row_source<
-    Rows, Scalar,
-    std::void_t<decltype(std::declval<const Rows&>().row(0, std::declval<Scalar*>()))>>
-    : std::true_type {};
 
 /// @brief A lower factor L (column j's diagonal first in the column-compressed arrays) with its
 /// inverse diagonal and a row-compressed copy of its strict lower part, and forward and back
@@ -74,29 +55,12 @@ struct LowerFactor {
   /// with one rounding (a fused multiply-add) instead of two.
   bool wide = false;
 
-  /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself). With a row
-  /// source `rhs` (see is_row_source), row i of the right-hand side is rhs->row(i) instead of w's
-  /// row i, which is not read.
-  template <class Rows = RightHandSideInPlace>
-  void forward_rows(const Index* order, Index begin, Index end, Scalar* w,
-                    const Rows* rhs = nullptr) const {
-    constexpr bool source = !std::is_same_v<Rows, RightHandSideInPlace>;
-    static_assert(!source || is_row_source<Rows, Scalar>::value,
-                  "LowerFactor::forward_rows: the row source must have "
-                  "`void row(int i, Scalar* out) const` (see detail::is_row_source)");
+  /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself).
+  void forward_rows(const Index* order, Index begin, Index end, Scalar* w) const {
 #ifdef MASSSPRING_HAVE_AVX2_PATH
-    if (wide) {
-      if constexpr (source)
-        if (rhs) return forward_rows_avx2<true>(*this, order, begin, end, w, rhs);
-      return forward_rows_avx2<false>(*this, order, begin, end, w, rhs);
-    }
+    if (wide) return forward_rows_avx2(*this, order, begin, end, w);
 #endif
-    for (Index q = begin; q < end; ++q) {
-      const Index i = order ? order[q] : q;
-      if constexpr (source)
-        if (rhs) rhs->row(int(i), w + 3 * i);
-      forward_row(i, w);
-    }
+    for (Index q = begin; q < end; ++q) forward_row(order ? order[q] : q, w);
   }
 
   /// @brief backward_row(order[q]) for q = end - 1 down to begin (order null: q itself).
@@ -115,11 +79,8 @@ struct LowerFactor {
     solve_row<1>(i, row_inner + first, row_value + first, row_outer[i + 1] - first, w);
   }
 
-  /// @brief The forward substitution L z = w in place (with `rhs`: L z = rhs, into w).
-  template <class Rows = RightHandSideInPlace>
-  void forward(Scalar* w, const Rows* rhs = nullptr) const {
-    forward_rows(nullptr, 0, n, w, rhs);
-  }
+  /// @brief The forward substitution L z = w in place.
+  void forward(Scalar* w) const { forward_rows(nullptr, 0, n, w); }
 
   /// @brief Row j of the back substitution L^T u = z: u_j = (z_j - sum_{i>j} L(i, j) u_i) /
   /// L(j, j), a gather from the rows below, column j of L read from its last entry up. Rows must
@@ -133,11 +94,9 @@ struct LowerFactor {
   /// @brief The back substitution L^T u = z in place.
   void backward(Scalar* w) const { backward_rows(nullptr, 0, n, w); }
 
-  /// @brief w = (L L^T)^-1 w; with `rhs`, w = (L L^T)^-1 rhs (w's rows 0 .. n - 1 written, not
-  /// read: the right-hand side is assembled as the forward substitution reaches each row).
-  template <class Rows = RightHandSideInPlace>
-  void solve(Scalar* w, const Rows* rhs = nullptr) const {
-    forward(w, rhs);
+  /// @brief w = (L L^T)^-1 w.
+  void solve(Scalar* w) const {
+    forward(w);
     backward(w);
   }
 
@@ -145,28 +104,27 @@ struct LowerFactor {
   /// substitutes forward its part (a union of subtrees, which needs no other rows), one thread the
   /// top after a barrier, forward then back, and after a second barrier each thread its part
   /// back. The same operations as solve() in the same order within each row: the same result, bit
-  /// for bit. Without OpenMP (or without a schedule) it is solve(). `rhs` as in solve().
-  template <class Rows = RightHandSideInPlace>
-  void solve_parallel(Scalar* w, const Rows* rhs = nullptr) const {
+  /// for bit. Without OpenMP (or without a schedule) it is solve().
+  void solve_parallel(Scalar* w) const {
 #ifdef _OPENMP
-    if (parts < 2) return solve(w, rhs);
+    if (parts < 2) return solve(w);
 #pragma omp parallel num_threads(parts)
     {
       const int t = omp_get_thread_num();
       const int threads = omp_get_num_threads();  // fewer than asked: the parts are shared out
       for (int part = t; part < parts; part += threads)
-        forward_rows(schedule, part_start[part], part_start[part + 1], w, rhs);
+        forward_rows(schedule, part_start[part], part_start[part + 1], w);
 #pragma omp barrier
 #pragma omp single
       {
-        forward_rows(schedule, part_start[parts], n, w, rhs);
+        forward_rows(schedule, part_start[parts], n, w);
         backward_rows(schedule, part_start[parts], n, w);
       }  // (an implied barrier)
       for (int part = t; part < parts; part += threads)
         backward_rows(schedule, part_start[part], part_start[part + 1], w);
     }
 #else
-    solve(w, rhs);
+    solve(w);
 #endif
   }
 

@@ -93,24 +93,17 @@ struct Row3<float> {
 #undef MASSSPRING_ROW3
 
 // The forward substitution's rows order[begin .. end) (order null: the rows themselves) of a
-// LowerFactor f. Assemble: row i of the right-hand side is rows->row_simd<Row3<Scalar>>(i) (rows
-// not null) instead of w's row i; an instantiation of its own, so that the plain solve has no
-// test per row.
-template <bool Assemble, class Factor, class Index, class Scalar, class Rows>
+// LowerFactor f.
+template <class Factor, class Index, class Scalar>
 MASSSPRING_TARGET_AVX2 void forward_rows_avx2(const Factor& f, const Index* order, Index begin,
-                                              Index end, Scalar* w, const Rows* rows) {
+                                              Index end, Scalar* w) {
   using R = Row3<Scalar>;
   for (Index q = begin; q < end; ++q) {
     const Index i = order ? order[q] : q;
     const Index* idx = f.row_inner + f.row_outer[i];
     const Scalar* l = f.row_value + f.row_outer[i];
     Index count = f.row_outer[i + 1] - f.row_outer[i];
-    typename R::V s;
-    if constexpr (Assemble)
-      s = rows->template row_simd<R>(int(i));
-    else
-      s = R::load(w + 3 * i);
-    auto t = R::zero(), u = R::zero(), v = R::zero();
+    auto s = R::load(w + 3 * i), t = R::zero(), u = R::zero(), v = R::zero();
     for (; count >= 4; count -= 4, idx += 4, l += 4) {
       s = R::sub_product(l, R::load_masked(w + 3 * idx[0]), s);
       t = R::add_product(l + 1, R::load_masked(w + 3 * idx[1]), t);

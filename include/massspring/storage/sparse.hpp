@@ -116,14 +116,10 @@ class SparseCholesky {
   /// @brief w = (P Q P^T)^-1 w for a #rows by 3 row-major array in the factor's order
   /// (w[3 r + c], r = permutation()[i] for Q's row i). No allocation, no permutation.
   void solve_in_place(Scalar* w) const {
-    substitute(w, static_cast<const detail::RightHandSideInPlace*>(nullptr));
-  }
-  /// @brief w = (P Q P^T)^-1 rhs, the right-hand side read from a row source row by row inside
-  /// the forward substitution (see detail::is_row_source; rows in the factor's order); w's rows
-  /// are written, not read.
-  template <class Rows>
-  void solve_in_place(Scalar* w, const Rows& rhs) const {
-    substitute(w, &rhs);
+    if (threads_ > 1)
+      lower().solve_parallel(w);
+    else
+      lower().solve(w);
   }
 
   /// @brief Threads the substitutions use (default 1). With t > 1 the rows are split along the
@@ -187,15 +183,6 @@ class SparseCholesky {
   }
 
  private:
-  // The two solve_in_place()s: on threads_ threads (the schedule is planned only for those).
-  template <class Rows>
-  void substitute(Scalar* w, const Rows* rhs) const {
-    if (threads_ > 1)
-      lower().solve_parallel(w, rhs);
-    else
-      lower().solve(w, rhs);
-  }
-
   Factorization llt_;
   Eigen::VectorXi perm_;
   detail::LowerFactorRows<Scalar> rows_;

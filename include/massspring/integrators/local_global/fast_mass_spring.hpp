@@ -3,8 +3,8 @@
 /// @brief FastMassSpring: the local-global solver of Liu et al. 2013, "Fast Simulation of
 /// Mass-Spring Systems", for one implicit-Euler step per call, with optional Chebyshev (Wang 2015)
 /// or Anderson (Peng et al. 2018) acceleration. Its pieces are in this folder: options.hpp,
-/// reduced_system.hpp (Q and the numbering of its unknowns), spring_pass.hpp and share_pass.hpp
-/// (the local step), guarded_loop.hpp, chebyshev.hpp and anderson.hpp (the iterations).
+/// reduced_system.hpp (Q and the numbering of its unknowns), spring_pass.hpp (the local step),
+/// guarded_loop.hpp, chebyshev.hpp and anderson.hpp (the iterations).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -27,7 +26,6 @@
 #include "massspring/integrators/local_global/inertial_term.hpp"
 #include "massspring/integrators/local_global/options.hpp"
 #include "massspring/integrators/local_global/reduced_system.hpp"
-#include "massspring/integrators/local_global/share_pass.hpp"
 #include "massspring/integrators/local_global/spring_pass.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/cholesky_concept.hpp"
@@ -176,7 +174,6 @@ class FastMassSpring {
 
  private:
   using Buffer = Vector<Scalar>;
-  static constexpr bool kDouble = std::is_same_v<Scalar, double>;
 
   // What guarded_loop() calls.
   struct Iteration {
@@ -216,17 +213,13 @@ class FastMassSpring {
                                             reduced_.free);
   }
 
-  // The solver's threads and the SIMD choice (substitutions, share pass) to the options'
+  // The solver's threads and the SIMD choice (the substitutions) to the options'
   // (SparseCholesky::set_threads checks for OpenMP).
   void apply_threads() {
     if constexpr (cholesky_has_threads<Cholesky>::value) {
       if (llt_.threads() != options.threads) llt_.set_threads(options.threads);
     }
     if constexpr (cholesky_has_simd<Cholesky>::value) llt_.set_avx2(simd_allowed());
-    simd_ = kDouble && simd_allowed() && local_global::SharePass::available();
-    assembled_in_solve_ =
-        simd_ &&
-        cholesky_has_row_source_solve<Cholesky, Scalar, local_global::ShareRows<Scalar>>::value;
   }
 
   // ---- precompute -------------------------------------------------------------------------------
@@ -273,9 +266,7 @@ class FastMassSpring {
     inertia_.build(system, reduced_, inv_dt2, drag_ / dt_);
 
     const Eigen::Index size = 3 * Eigen::Index(nx);
-    // One value more than the iterate's rows: the share pass loads the last row as four values.
-    for (Buffer& b : buffers_) b.setZero(size + 1);
-    if constexpr (kDouble) share_pass_.build(springs_, nx);
+    for (Buffer& b : buffers_) b.setZero(size);
     x_end_.resize(n, 3);  // the end-of-step state a collision handler sees (commit())
     v_end_.resize(n, 3);
     anderson_.reserve(nr,
@@ -318,42 +309,16 @@ class FastMassSpring {
   }
 
   // The local step at x into w (w = rhs0 + A^T K D); returns E(x) when Energy. With colliders, x
-  // is first projected out of them (contact_projection.hpp). On the SIMD path
-  // with a factorisation that reads a row source, only the springs' shares are computed and w is
-  // left as it is: global_step() must follow before w is read.
+  // is first projected out of them (contact_projection.hpp).
   template <bool Energy>
   MASSSPRING_NOINLINE double local_step(Scalar* x, Scalar* w) {
     const double contact = contact_.active() ? contact_.apply(x, inertia_.rhs0) : 0.0;
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-    if constexpr (kDouble) {
-      if (simd_) {
-        double energy = 0;
-        if constexpr (Energy) energy = contact + start_rhs<true, false>(x, nullptr);
-        energy += share_pass_.template run<Energy>(x, springs_);
-        if (!assembled_in_solve_) {
-          const local_global::ShareRows<Scalar> rhs = share_pass_.rows(inertia_.rhs0.data());
-          for (int r = 0; r < reduced_.nr; ++r) rhs.row(r, w + 3 * r);
-        }
-        return energy;
-      }
-    }
-#endif
     const double quadratic = contact + start_rhs<Energy>(x, w);
     return quadratic + springs_.template pass<true, Energy>(x, w, reduced_.nx);
   }
 
-  // The global step in place: w = Q^-1 w on the free rows (w = Q^-1 (rhs0 + A^T K D) assembled
-  // from the shares, see local_step()); pinned rows restored.
+  // The global step in place: w = Q^-1 w on the free rows; pinned rows restored.
   MASSSPRING_NOINLINE void global_step(Scalar* w) {
-    if constexpr (kDouble &&
-                  cholesky_has_row_source_solve<Cholesky, Scalar,
-                                                local_global::ShareRows<Scalar>>::value) {
-      if (assembled_in_solve_) {
-        llt_.solve_in_place(w, share_pass_.rows(inertia_.rhs0.data()));
-        restore_pins(w);
-        return;
-      }
-    }
     llt_.solve_in_place(w);
     restore_pins(w);
   }
@@ -369,12 +334,6 @@ class FastMassSpring {
   // E at x without touching any right-hand side (and recording the springs' directions).
   MASSSPRING_NOINLINE double energy_at(const Scalar* x) {
     const double contact = contact_.active() ? contact_.energy(x) : 0.0;
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-    if constexpr (kDouble)
-      if (simd_)
-        return contact + start_rhs<true, false>(x, nullptr) +
-               share_pass_.template run<true, false>(x, springs_);
-#endif
     return contact + start_rhs<true, false>(x, nullptr) +
            springs_.template pass<false, true>(x, nullptr, reduced_.nx);
   }
@@ -479,17 +438,14 @@ class FastMassSpring {
   std::size_t rejections_ = 0;
   local_global::ReducedSystem<Scalar> reduced_;
   local_global::PackedSprings<Scalar> springs_;
-  local_global::SharePass share_pass_;  // double only
   Matrix q_;
   Cholesky llt_;
   std::array<Buffer, 5> buffers_;
   local_global::InertialTerm<Scalar> inertia_;
-  bool simd_ = false;                // the share pass (double, options.simd, a CPU with AVX2 + FMA)
-  bool assembled_in_solve_ = false;  // simd_, and llt_ reads the right-hand side from a row source
-  Scalar drag_ = 0;                  // sum of the terms' uniform linear damping [N s/m]
-  bool other_terms_ = false;         // the system has force terms other than that
-  Points<Scalar> term_force_;        // their force at the step's start
-  Points<Scalar> x_end_, v_end_;     // the end-of-step state, for a collision handler
+  Scalar drag_ = 0;               // sum of the terms' uniform linear damping [N s/m]
+  bool other_terms_ = false;      // the system has force terms other than that
+  Points<Scalar> term_force_;     // their force at the step's start
+  Points<Scalar> x_end_, v_end_;  // the end-of-step state, for a collision handler
   local_global::Anderson<Scalar> anderson_;
   local_global::ContactProjection<Scalar> contact_;  // the contact term (colliders)
   bool with_contact_ = false;                        // Q was built for a system with colliders

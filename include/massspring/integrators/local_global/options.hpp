@@ -127,13 +127,12 @@ struct FastMassSpringOptions {
   /// set_threads(); refused otherwise. Pays only on large factors (docs/performance.md). A change
   /// takes effect at the next step (planning the split allocates, once).
   int threads = 1;
-  /// @brief Use the SIMD (AVX2 + FMA) versions of the hot loops where the CPU has them (GCC or
-  /// Clang on x86-64; checked at run time): the substitutions (Sparse storage and CHOLMOD) and the
-  /// local step's pass over the springs (double). Default true; docs/performance.md gives what
-  /// it gains. The substitutions' results differ from the baseline (SSE2) ones' in the last bits
+  /// @brief Use the SIMD (AVX2 + FMA) substitutions where the CPU has them (GCC or Clang on
+  /// x86-64; checked at run time; Sparse storage and CHOLMOD). Default true; docs/performance.md
+  /// gives what it gains. Their results differ from the baseline (SSE2) ones' in the last bits
   /// (fused multiply-adds), so a trajectory is the same bit for bit only between machines that
-  /// take the same path: false takes the baseline code everywhere. The spring pass gives the same
-  /// bits on either path. Compiling with MASSSPRING_NO_AVX2 defined leaves the SIMD code out.
+  /// take the same path: false takes the baseline code everywhere. Compiling with
+  /// MASSSPRING_NO_AVX2 defined leaves the SIMD code out.
   bool simd = true;
   /// @brief Deprecated name of `simd`: the SIMD code runs only when both are true. Kept so that
   /// existing code compiles; it will go in the next major version.

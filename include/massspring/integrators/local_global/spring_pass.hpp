@@ -4,7 +4,7 @@
 /// the local step's pass over them (Liu et al. 2013, section 4): for each spring e = (a, b),
 /// d_e = r_e (x_a - x_b) / |x_a - x_b|, scattered as k_e d_e into row a and -k_e d_e into row b
 /// of the right-hand side A^T K D, with the springs' energy sum_e k_e / 2 (|x_a - x_b| - r_e)^2
-/// [J] in the same pass when asked for. The SIMD variant of this pass is in share_pass.hpp.
+/// [J] in the same pass when asked for.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -60,15 +60,12 @@ struct SpringEnds {
 
 /// @brief The springs of a system sorted by their lower row a, then by the higher row b, with
 /// their stiffness k [N/m], rest length r [m], k r [N] and the unit direction each keeps for when
-/// its length is zero. The arrays hold `count` springs and then up to three inert ones (rows 0
-/// and 0, k = r = 0, no direction), so that a pass four springs at a time (share_pass.hpp) has no
-/// remainder: their shares and energies are exactly 0. Built once per factorisation (allocates);
-/// the pass allocates nothing.
+/// its length is zero. Built once per factorisation (allocates); the pass allocates nothing.
 template <class Scalar>
 struct PackedSprings {
   using Buffer = Vector<Scalar>;
 
-  int count = 0;                 // springs (the arrays hold count, padded to a multiple of 4)
+  int count = 0;                 // springs
   std::vector<SpringEnds> ends;  // sorted by (a, b)
   std::vector<int> order;        // order[s]: the system's spring index of sorted spring s
   std::vector<bool> flipped;     // the system's (i, j) is (b, a): the direction's sign flips
@@ -95,11 +92,10 @@ struct PackedSprings {
     };
     std::sort(order.begin(), order.end(), [&](int x, int y) { return key(x) < key(y); });
     count = m;
-    const int padded = (m + 3) / 4 * 4;
-    ends.assign(std::size_t(padded), SpringEnds{0, 0});
-    stiffness.setZero(padded);
-    rest.setZero(padded);
-    kr.setZero(padded);
+    ends.assign(std::size_t(m), SpringEnds{0, 0});
+    stiffness.setZero(m);
+    rest.setZero(m);
+    kr.setZero(m);
     const auto& k = system.stiffness();
     for (int s = 0; s < m; ++s) {
       const int e = order[std::size_t(s)];
@@ -111,7 +107,7 @@ struct PackedSprings {
       flipped.push_back(i > j);
     }
     run_sum.setZero(3 * Eigen::Index(rows));
-    direction.setZero(3 * Eigen::Index(padded));
+    direction.setZero(3 * Eigen::Index(m));
     for (int s = 0; s < m; ++s) {
       const int e = order[std::size_t(s)];
       Vector3<Scalar> u =
