@@ -24,6 +24,12 @@
 /// is, and a block on an incline slides with a = g (sin t - mu cos t). Afterwards up to two rounds
 /// of normal pushes take a point out of any collider another one pushed it into. Pinned points
 /// are left alone.
+///
+/// Compile time: the response's code (every collider shape's contact query, the mesh's hierarchy)
+/// is instantiated by add(), which stores a table of pointers to it, and not by the calls an
+/// integrator makes (respond(), project(), begin_step(), end_step(), undo_step()), which go
+/// through that table and do nothing while the set has never had a collider. A program that never
+/// adds a collider does not compile the response at all.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -46,6 +52,10 @@ class ColliderSet {
 
   /// @brief Adds a collider; returns its index.
   int add(Collider<Scalar> collider) {
+    static constexpr Ops kOps{&ColliderSet::respond_all, &ColliderSet::project_one,
+                              &ColliderSet::begin_all, &ColliderSet::end_all,
+                              &ColliderSet::undo_all};
+    ops_ = &kOps;
     colliders_.push_back(std::move(collider));
     impulses_.push_back(V3::Zero());
     return int(colliders_.size()) - 1;
@@ -71,15 +81,15 @@ class ColliderSet {
 
   /// @brief Each collider's pose at the end of a step of dt [s] (used by the responses).
   void begin_step(Scalar dt) {
-    for (auto& c : colliders_) c.begin_step(dt);
+    if (ops_) ops_->begin_step(*this, dt);
   }
   /// @brief Each collider moves to its end-of-step pose: called once a step succeeded.
   void end_step() {
-    for (auto& c : colliders_) c.end_step();
+    if (ops_) ops_->end_step(*this);
   }
   /// @brief Each collider back to its pose before the last end_step().
   void undo_step() {
-    for (auto& c : colliders_) c.undo_step();
+    if (ops_) ops_->undo_step(*this);
   }
 
   /// @brief The end-of-step response (see the file comment) of every point not pinned, from the
@@ -90,7 +100,56 @@ class ColliderSet {
   void respond(const Points<Scalar>& x_start, Points<Scalar>& x_end, Points<Scalar>& v_end,
                Scalar dt, const Vector<Scalar>& masses, const std::vector<int>& pinned,
                bool friction = true) {
-    begin_step(dt);
+    if (ops_) ops_->respond(*this, x_start, x_end, v_end, dt, masses, pinned, friction);
+  }
+
+  /// @brief The position response of one point (3 coordinates each), x_end moved in place:
+  /// FastMassSpring's projection of an iterate. begin_step(dt) must have been called.
+  void project(const Scalar* x_start, Scalar* x_end, Scalar dt) const {
+    if (ops_) ops_->project(*this, x_start, x_end, dt);
+  }
+
+  /// @brief False when the path x_start -> x_end is far from every collider (Collider::far()).
+  template <class A, class B>
+  [[nodiscard]] bool near(const A& x_start, const B& x_end) const {
+    for (const auto& c : colliders_)
+      if (!c.far(x_start, x_end, Scalar(0))) return true;
+    return false;
+  }
+
+ private:
+  // The response's entry points (see the file comment): add() stores their addresses, and only
+  // add() names them, so that only a program that adds a collider instantiates them.
+  struct Ops {
+    void (*respond)(ColliderSet&, const Points<Scalar>&, Points<Scalar>&, Points<Scalar>&, Scalar,
+                    const Vector<Scalar>&, const std::vector<int>&, bool);
+    void (*project)(const ColliderSet&, const Scalar*, Scalar*, Scalar);
+    void (*begin_step)(ColliderSet&, Scalar);
+    void (*end_step)(ColliderSet&);
+    void (*undo_step)(ColliderSet&);
+  };
+  static void begin_all(ColliderSet& set, Scalar dt) {
+    for (auto& c : set.colliders_) c.begin_step(dt);
+  }
+  static void end_all(ColliderSet& set) {
+    for (auto& c : set.colliders_) c.end_step();
+  }
+  static void undo_all(ColliderSet& set) {
+    for (auto& c : set.colliders_) c.undo_step();
+  }
+  static void respond_all(ColliderSet& set, const Points<Scalar>& x_start, Points<Scalar>& x_end,
+                          Points<Scalar>& v_end, Scalar dt, const Vector<Scalar>& masses,
+                          const std::vector<int>& pinned, bool friction) {
+    set.respond_impl(x_start, x_end, v_end, dt, masses, pinned, friction);
+  }
+  static void project_one(const ColliderSet& set, const Scalar* x_start, Scalar* x_end, Scalar dt) {
+    set.project_impl(x_start, x_end, dt);
+  }
+
+  void respond_impl(const Points<Scalar>& x_start, Points<Scalar>& x_end, Points<Scalar>& v_end,
+                    Scalar dt, const Vector<Scalar>& masses, const std::vector<int>& pinned,
+                    bool friction) {
+    begin_all(*this, dt);
     for (V3& j : impulses_) j.setZero();
     std::size_t next_pin = 0;
     for (int i = 0; i < int(x_start.rows()); ++i) {
@@ -108,9 +167,7 @@ class ColliderSet {
     }
   }
 
-  /// @brief The position response of one point (3 coordinates each), x_end moved in place:
-  /// FastMassSpring's projection of an iterate. begin_step(dt) must have been called.
-  void project(const Scalar* x_start, Scalar* x_end, Scalar dt) const {
+  void project_impl(const Scalar* x_start, Scalar* x_end, Scalar dt) const {
     const Eigen::Map<const V3> xs(x_start);
     const Eigen::Map<const V3> xe(x_end);
     if (!near(xs, xe)) return;  // most points: a few flops each
@@ -119,15 +176,6 @@ class ColliderSet {
       for (int c = 0; c < 3; ++c) x_end[c] = moved(c);
   }
 
-  /// @brief False when the path x_start -> x_end is far from every collider (Collider::far()).
-  template <class A, class B>
-  [[nodiscard]] bool near(const A& x_start, const B& x_end) const {
-    for (const auto& c : colliders_)
-      if (!c.far(x_start, x_end, Scalar(0))) return true;
-    return false;
-  }
-
- private:
   // Contact tolerance: a point within a few rounding units of the surface touches it (units of
   // the point's coordinates, and of the collider's position and thickness).
   static Scalar point_slop(const V3& x) {
@@ -198,6 +246,7 @@ class ColliderSet {
 
   std::vector<Collider<Scalar>> colliders_;
   std::vector<V3> impulses_;
+  const Ops* ops_ = nullptr;  // set by the first add()
 };
 
 }  // namespace massspring::contact
