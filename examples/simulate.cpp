@@ -23,7 +23,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <iterator>
 #include <massspring/io.hpp>
 #include <massspring/io/state_scene.hpp>
 #include <massspring/massspring.hpp>
