@@ -164,6 +164,15 @@ const Paths& query_paths() {
   return paths;
 }
 
+// The mesh queries' counters: the triangle count and the time per queried point.
+void set_query_counters(benchmark::State& state, const massspring::contact::Triangles& triangles,
+                        const Paths& paths) {
+  state.counters["triangles"] = double(triangles.rows());
+  state.counters["time_per_point"] =
+      benchmark::Counter(double(paths.start.size()), benchmark::Counter::kIsIterationInvariantRate |
+                                                         benchmark::Counter::kInvert);
+}
+
 void MeshQuery(benchmark::State& state) {
   auto [vertices, triangles] = icosphere(int(state.range(0)));
   const Collider mesh = Collider::mesh(vertices, triangles).set_thickness(0.02);
@@ -175,10 +184,7 @@ void MeshQuery(benchmark::State& state) {
       contacts += mesh.contact(paths.start[i], paths.end[i], 0.0, c) ? 1 : 0;
     benchmark::DoNotOptimize(contacts);
   }
-  state.counters["triangles"] = double(triangles.rows());
-  state.counters["time_per_point"] =
-      benchmark::Counter(double(paths.start.size()), benchmark::Counter::kIsIterationInvariantRate |
-                                                         benchmark::Counter::kInvert);
+  set_query_counters(state, triangles, paths);
 }
 BENCHMARK(MeshQuery)->ArgName("levels")->DenseRange(1, 7)->Unit(benchmark::kMicrosecond);
 
@@ -205,10 +211,7 @@ void MeshQueryBrute(benchmark::State& state) {
     }
     benchmark::DoNotOptimize(contacts);
   }
-  state.counters["triangles"] = double(triangles.rows());
-  state.counters["time_per_point"] =
-      benchmark::Counter(double(paths.start.size()), benchmark::Counter::kIsIterationInvariantRate |
-                                                         benchmark::Counter::kInvert);
+  set_query_counters(state, triangles, paths);
 }
 BENCHMARK(MeshQueryBrute)->ArgName("levels")->DenseRange(1, 4)->Unit(benchmark::kMicrosecond);
 

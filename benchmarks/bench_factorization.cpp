@@ -14,6 +14,7 @@
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/scene/cloth.hpp>
 #include <massspring/scene/make_system.hpp>
+#include <massspring/scene/recipes.hpp>
 #include <massspring/storage/storage.hpp>
 #include <string>
 #include <vector>
@@ -109,13 +110,7 @@ int main() {
   std::printf(
       "| scene | factorisation | nnz(L) | factorise ms | one n x 3 solve ms |\n"
       "|---|---|---:|---:|---:|\n");
-  massspring::ClothOptions curtain;
-  curtain.columns = curtain.rows = 81;
-  curtain.width = curtain.height = 1.0;
-  curtain.shear = massspring::ClothShear::One;
-  curtain.bending = true;
-  curtain.stiffness = 1000;
-  compare("curtain", curtain);
+  compare("curtain", massspring::curtain_recipe());
   for (const int n : {128, 256, 512}) {
     massspring::ClothOptions o;
     o.columns = o.rows = n;

@@ -51,6 +51,13 @@ struct Scene {
   double end_time;
 };
 
+// A scene of the recipe's system under gravity 9.81 m/s^2 (a Gravity term), for 1 s.
+Scene under_gravity(std::string name, std::string description, const SceneDescription<double>& d) {
+  System s = make_system<System>(d);
+  s.add_force(Gravity<double>({0, -9.81, 0}));
+  return {std::move(name), std::move(description), std::move(s), 1.0};
+}
+
 Scene cloth_scene(int n, double stiffness) {
   // Hanging from its top corners and released from its rest shape. With k = 50 N/m it stretches
   // under its weight and swings (the points move 15-17% of the diagonal in 1 s); with the
@@ -58,50 +65,35 @@ Scene cloth_scene(int n, double stiffness) {
   // would already be "accurate". A cloth dropped from horizontal or pushed sideways was tried too:
   // at k = 1000 its RK4 solution on 32x32 and 64x64 does not settle to 1e-9 when the step is
   // halved (the stiff, undamped motion is chaotic within a second), so it has no reference.
-  ClothOptions o;
-  o.columns = o.rows = n;
-  o.width = o.height = 1.0;
-  o.shear = ClothShear::Both;
-  o.pins = ClothPins::TopCorners;
+  ClothOptions o = hanging_cloth_recipe(n);
   o.stiffness = stiffness;
-  System s = make_system<System>(make_cloth(o));
-  s.add_force(Gravity<double>({0, -9.81, 0}));
   char k[32];
   std::snprintf(k, sizeof k, "%g", stiffness);
-  return {"cloth" + std::to_string(n),
-          std::to_string(n) + "x" + std::to_string(n) +
-              " cloth, 1 m x 1 m vertical, quads with both diagonals, k = " + k +
-              " N/m, Voronoi masses (1 kg in all), top corners pinned, gravity 9.81 m/s^2, "
-              "released from its rest shape",
-          std::move(s), 1.0};
+  return under_gravity("cloth" + std::to_string(n),
+                       std::to_string(n) + "x" + std::to_string(n) +
+                           " cloth, 1 m x 1 m vertical, quads with both diagonals, k = " + k +
+                           " N/m, Voronoi masses (1 kg in all), top corners pinned, gravity 9.81 "
+                           "m/s^2, released from its rest shape",
+                       make_cloth(o));
 }
 
 Scene chain_scene() {
-  ChainOptions o;
+  ChainOptions o = chain_recipe();
   o.points = 20;
-  o.length = 1.0;
-  o.pins = ChainPins::BothEnds;
-  o.stiffness = 500;
   o.mass = 0.05;
-  System s = make_system<System>(make_chain(o));
-  s.add_force(Gravity<double>({0, -9.81, 0}));
-  return {"chain",
-          "20 points on 1 m, both ends pinned, k = 500 N/m, 0.05 kg each, gravity, from straight "
-          "and at rest (it sags and swings)",
-          std::move(s), 1.0};
+  return under_gravity("chain",
+                       "20 points on 1 m, both ends pinned, k = 500 N/m, 0.05 kg each, gravity, "
+                       "from straight and at rest (it sags and swings)",
+                       make_chain(o));
 }
 
 Scene net_scene() {
-  NetOptions o;
-  o.columns = o.rows = 8;
-  o.stiffness = 300;
+  NetOptions o = net_recipe();
   o.mass = 1.0 / 64;
-  System s = make_system<System>(make_net(o));
-  s.add_force(Gravity<double>({0, -9.81, 0}));
-  return {"net",
-          "8x8 net (1 m x 1 m, horizontal), corners pinned, k = 300 N/m, 1/64 kg each, gravity, "
-          "from rest",
-          std::move(s), 1.0};
+  return under_gravity("net",
+                       "8x8 net (1 m x 1 m, horizontal), corners pinned, k = 300 N/m, 1/64 kg "
+                       "each, gravity, from rest",
+                       make_net(o));
 }
 
 Scene orbit_scene() {

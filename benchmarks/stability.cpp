@@ -48,6 +48,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <massspring/integrators/with_integrator.hpp>
 #include <massspring/massspring.hpp>
 #include <string>
 #include <type_traits>
@@ -67,38 +68,14 @@ constexpr double kGrowth = 0.05;                      // "growing": gain above 5
 constexpr double kBoundFactors[] = {1.0, 0.75, 0.5};  // runs at factor x stability_limit
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-enum class Method {
-  ForwardEuler,
-  SymplecticEuler,
-  RK4,
-  BackwardEulerLinearized,
-  BackwardEulerNewton,
-  LocalGlobal
-};
-constexpr Method kMethods[] = {Method::ForwardEuler,
-                               Method::SymplecticEuler,
-                               Method::RK4,
-                               Method::BackwardEulerLinearized,
-                               Method::BackwardEulerNewton,
-                               Method::LocalGlobal};
+using Method = massspring::IntegratorKind;
+// In the order of the results (plot_stability.py reads them by label).
+constexpr Method kMethods[] = {Method::ForwardEuler,  Method::SymplecticEuler,
+                               Method::RK4,           Method::LinearizedBackwardEuler,
+                               Method::BackwardEuler, Method::FastMassSpring};
 
-const char* name(Method m) {
-  switch (m) {
-    case Method::ForwardEuler:
-      return "ForwardEuler";
-    case Method::SymplecticEuler:
-      return "SymplecticEuler";
-    case Method::RK4:
-      return "RK4";
-    case Method::BackwardEulerLinearized:
-      return "BackwardEuler-linearized";
-    case Method::BackwardEulerNewton:
-      return "BackwardEuler-Newton";
-    case Method::LocalGlobal:
-      return "LocalGlobal";
-  }
-  return "?";
-}
+// The label in the results: ForwardEuler, ..., BackwardEuler-Newton, LocalGlobal.
+const char* name(Method m) { return massspring::to_string(m, massspring::IntegratorNaming::Label); }
 
 bool is_explicit(Method m) {
   return m == Method::ForwardEuler || m == Method::SymplecticEuler || m == Method::RK4;
@@ -124,11 +101,11 @@ double cost_weight(Method m) {
       return 1;
     case Method::RK4:
       return 3;
-    case Method::BackwardEulerLinearized:
+    case Method::LinearizedBackwardEuler:
       return 40;
-    case Method::BackwardEulerNewton:
+    case Method::BackwardEuler:
       return 80;
-    case Method::LocalGlobal:
+    case Method::FastMassSpring:
       return 45;
   }
   return 1;
@@ -143,19 +120,14 @@ struct SceneSpec {
 System make_scene(const SceneSpec& spec, double k) {
   massspring::SceneDescription<double> desc;
   if (spec.name == "chain") {
-    massspring::ChainOptions o;
+    massspring::ChainOptions o = massspring::chain_recipe();
     o.points = spec.size;
-    o.length = 1.0;
     o.pins = massspring::ChainPins::First;
     o.stiffness = k;
     o.mass = 1.0 / spec.size;
     desc = massspring::make_chain(o);
   } else {
-    massspring::ClothOptions o;
-    o.columns = o.rows = spec.size;
-    o.width = o.height = 1.0;
-    o.shear = massspring::ClothShear::Both;
-    o.pins = massspring::ClothPins::TopCorners;
+    massspring::ClothOptions o = massspring::hanging_cloth_recipe(spec.size);
     o.plane = massspring::ClothPlane::Horizontal;
     o.stiffness = k;
     o.mass = 1.0 / (spec.size * spec.size);
@@ -286,37 +258,9 @@ void classify(Run& run) {
 
 Run run_method(Method m, const System& proto, double dt, long steps) {
   Run run;
-  switch (m) {
-    case Method::ForwardEuler: {
-      massspring::ForwardEuler<System> integrator;
-      simulate(proto, integrator, dt, steps, run);
-      break;
-    }
-    case Method::SymplecticEuler: {
-      massspring::SymplecticEuler<System> integrator;
-      simulate(proto, integrator, dt, steps, run);
-      break;
-    }
-    case Method::RK4: {
-      massspring::RK4<System> integrator;
-      simulate(proto, integrator, dt, steps, run);
-      break;
-    }
-    case Method::BackwardEulerLinearized:
-    case Method::BackwardEulerNewton: {
-      massspring::BackwardEuler<System> integrator;
-      integrator.options.mode = m == Method::BackwardEulerNewton
-                                    ? massspring::BackwardEulerMode::Newton
-                                    : massspring::BackwardEulerMode::Linearized;
-      simulate(proto, integrator, dt, steps, run);
-      break;
-    }
-    case Method::LocalGlobal: {
-      massspring::FastMassSpring<System> integrator;  // default options: 50 iterations
-      simulate(proto, integrator, dt, steps, run);
-      break;
-    }
-  }
+  // BackwardEuler in the kind's mode, FastMassSpring with default options (50 iterations)
+  massspring::with_integrator<System>(
+      m, [&](auto& integrator) { simulate(proto, integrator, dt, steps, run); });
   classify(run);
   return run;
 }

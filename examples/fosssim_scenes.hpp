@@ -14,6 +14,18 @@ namespace massspring::examples {
 
 namespace detail {
 
+/// @brief A scene with no particles yet: its description, integrator, time step dt [s] and
+/// duration [s].
+inline io::FosssimScene new_scene(std::string description, io::FosssimIntegrator integrator,
+                                  double dt, double duration) {
+  io::FosssimScene s;
+  s.description = std::move(description);
+  s.integrator = integrator;
+  s.dt = dt;
+  s.duration = duration;
+  return s;
+}
+
 /// @brief Appends a particle (z = 0); returns its index.
 inline int add_particle(io::FosssimScene& s, double m, double x, double y, double vx = 0,
                         double vy = 0, bool fixed = false) {
@@ -44,17 +56,16 @@ inline void add_spring(io::FosssimScene& s, int i, int j, double k, double b, do
 inline std::vector<std::pair<std::string, io::FosssimScene>> project_fosssim_scenes() {
   using detail::add_particle;
   using detail::add_spring;
+  using detail::new_scene;
+  using io::FosssimIntegrator;
   std::vector<std::pair<std::string, io::FosssimScene>> scenes;
 
   {  // A planet on an ellipse around a fixed sun: G M = 1, released at r = 1 with speed 0.8
      // across, so a = 1 / (2 - 0.64) = 0.735, e = 0.36, period 2 pi a^1.5 = 3.96 s.
-    io::FosssimScene s;
-    s.description =
+    io::FosssimScene s = new_scene(
         "A planet on an ellipse (a = 0.735, e = 0.36) around a fixed sun. Run it with "
-        "--integrator forward-euler to watch explicit Euler spiral out.";
-    s.integrator = io::FosssimIntegrator::SymplecticEuler;
-    s.dt = 0.01;
-    s.duration = 20;
+        "--integrator forward-euler to watch explicit Euler spiral out.",
+        FosssimIntegrator::SymplecticEuler, 0.01, 20);
     add_particle(s, 1, 0, 0, 0, 0, true);
     add_particle(s, 1, 1, 0, 0, 0.8);
     s.attractions.push_back({0, 1, 1.0});
@@ -62,13 +73,11 @@ inline std::vector<std::pair<std::string, io::FosssimScene>> project_fosssim_sce
   }
 
   {  // A cantilever truss, 2 m by 0.2 m, 11 x 2 particles, clamped at its left end, under gravity.
-    io::FosssimScene s;
-    s.description =
+    // dt = 0.5 ms, explicit: below 2 / omega_max, omega_max^2 <= 5 * 2 k / m = 2e6 s^-2
+    io::FosssimScene s = new_scene(
         "A truss cantilever clamped at its left end, sagging under gravity; drag and spring "
-        "damping settle it.";
-    s.integrator = io::FosssimIntegrator::SymplecticEuler;
-    s.dt = 0.0005;  // explicit: below 2 / omega_max, omega_max^2 <= 5 * 2 k / m = 2e6 s^-2
-    s.duration = 6;
+        "damping settle it.",
+        FosssimIntegrator::SymplecticEuler, 0.0005, 6);
     const int columns = 11;
     const double spacing = 0.2, height = 0.2, k = 20000, b = 5, m = 0.1;
     for (int c = 0; c < columns; ++c)
@@ -89,13 +98,10 @@ inline std::vector<std::pair<std::string, io::FosssimScene>> project_fosssim_sce
 
   {  // A chain of 16 links of rest length 0.3 m (4.8 m) hanging between two fixed ends 3 m apart,
      // starting on a circular arc of that length, at rest. Run with --shrink RATE to pull it up.
-    io::FosssimScene s;
-    s.description =
+    io::FosssimScene s = new_scene(
         "A chain hanging between two fixed ends. With massspring-simulate --shrink RATE its rest "
-        "lengths shrink as exp(-RATE t) and pull it taut.";
-    s.integrator = io::FosssimIntegrator::LinearizedImplicitEuler;
-    s.dt = 0.01;
-    s.duration = 10;
+        "lengths shrink as exp(-RATE t) and pull it taut.",
+        FosssimIntegrator::LinearizedImplicitEuler, 0.01, 10);
     const int links = 16;
     const double span = 3.0, rest = 0.3, k = 500, b = 0.5, m = 0.05;
     // The arc of length L = links * rest over the chord c = span: c / L = sin(a) / a with a the
@@ -121,12 +127,9 @@ inline std::vector<std::pair<std::string, io::FosssimScene>> project_fosssim_sce
 
   {  // Eleven springs, identical but for their damping b = 0, 0.1, ..., 1 (N s/m): unit masses
      // pulled 0.5 m beyond a 1 m rest length, stacked 0.3 m apart (b = 0 at the top).
-    io::FosssimScene s;
-    s.description =
-        "Eleven springs stretched alike, damped with b = 0, 0.1, ..., 1 from top to bottom.";
-    s.integrator = io::FosssimIntegrator::SymplecticEuler;
-    s.dt = 0.005;
-    s.duration = 12;
+    io::FosssimScene s = new_scene(
+        "Eleven springs stretched alike, damped with b = 0, 0.1, ..., 1 from top to bottom.",
+        FosssimIntegrator::SymplecticEuler, 0.005, 12);
     for (int e = 0; e <= 10; ++e) {
       const double y = -0.3 * e;
       const int i = add_particle(s, 1, -0.75, y);
@@ -144,17 +147,15 @@ inline std::vector<std::pair<std::string, io::FosssimScene>> project_fosssim_sce
   for (const io::FosssimCollision type :
        {io::FosssimCollision::Simple, io::FosssimCollision::Penalty,
         io::FosssimCollision::ContinuousTime, io::FosssimCollision::Hybrid}) {
-    io::FosssimScene s;
     const std::string kind = io::to_string(type);
-    s.description =
-        "Twelve balls and a spring-joined pair dropped onto a fixed ramp in a box; "
-        "collision response: " +
-        kind + ".";
-    s.integrator = io::FosssimIntegrator::SymplecticEuler;
     // The penalty response's stiff springs (k = 10^4 N/m) take dt = 0.5 ms: at 2 ms symplectic
     // Euler pumps energy into the bounces, and a softer k lets a falling ball through the floor.
-    s.dt = type == io::FosssimCollision::Penalty ? 0.0005 : 0.002;
-    s.duration = 4;
+    io::FosssimScene s = new_scene(
+        "Twelve balls and a spring-joined pair dropped onto a fixed ramp in a box; collision "
+        "response: " +
+            kind + ".",
+        FosssimIntegrator::SymplecticEuler, type == io::FosssimCollision::Penalty ? 0.0005 : 0.002,
+        4);
     const int a = add_particle(s, 1, -1.6, 1.4, 0, 0, true);  // the ramp's ends
     const int b = add_particle(s, 1, 0.4, 0.6, 0, 0, true);
     const Eigen::Index ramp = s.edges.rows();

@@ -23,7 +23,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <iterator>
 #include <massspring/io.hpp>
 #include <massspring/io/state_scene.hpp>
 #include <massspring/massspring.hpp>
@@ -146,8 +145,7 @@ int main(int argc, char** argv) {
       app.add_option("--integrator", c.integrator,
                      "Integrator (default: an XML scene's or a saved state's; else "
                      "fast-mass-spring)")
-          ->check(CLI::IsMember(std::vector<std::string>(std::begin(simulate::kIntegrators),
-                                                         std::end(simulate::kIntegrators))))
+          ->check(CLI::IsMember(massspring::integrator_names(massspring::IntegratorNaming::Cli)))
           ->default_str("fast-mass-spring");
   app.add_option("--shrink", shrink,
                  "Shrink every rest length as l0(t) = l0(0) exp(-RATE t) [1/s] (0: never)")
@@ -215,20 +213,21 @@ int main(int argc, char** argv) {
                               "backward-euler: backtracking line search, on or off")
                    ->check(CLI::IsMember({"on", "off"}))
                    ->capture_default_str());
-  auto* o_force =
-      app.add_option("--force", force,
-                     "Force on every point [N], FX,FY,FZ, added as a ConstantForce term (not for "
-                     "XML scenes or saved states: they carry their own)")
-          ->delimiter(',')
-          ->expected(3)
-          ->capture_default_str();
-  auto* o_gravity =
-      app.add_option("--gravity", gravity,
-                     "Acceleration of every point [m/s^2], GX,GY,GZ, added as a Gravity term "
-                     "(not for XML scenes or saved states: they carry their own)")
-          ->delimiter(',')
-          ->expected(3)
-          ->capture_default_str();
+  // --force and --gravity: three numbers, X,Y,Z
+  auto add_vector3 = [&app](const char* name, std::vector<std::string>& target, const char* help) {
+    return app.add_option(name, target, help)
+        ->delimiter(',')
+        ->expected(3)
+        ->capture_default_str()
+        ->type_name("X,Y,Z");
+  };
+  auto* o_force = add_vector3("--force", force,
+                              "Force on every point [N], FX,FY,FZ, added as a ConstantForce term "
+                              "(not for XML scenes or saved states: they carry their own)");
+  auto* o_gravity = add_vector3("--gravity", gravity,
+                                "Acceleration of every point [m/s^2], GX,GY,GZ, added as a "
+                                "Gravity term (not for XML scenes or saved states: they carry "
+                                "their own)");
   app.add_option("--storage", c.storage, "Matrix storage: sparse or dense")
       ->check(CLI::IsMember({"sparse", "dense"}))
       ->capture_default_str();
@@ -276,7 +275,6 @@ int main(int argc, char** argv) {
     const std::string name = o->get_name();
     if (std::find(whole.begin(), whole.end(), name) != whole.end()) o->type_name("INT");
     if (std::find(real.begin(), real.end(), name) != real.end()) o->type_name("NUMBER");
-    if (name == "--gravity" || name == "--force") o->type_name("X,Y,Z");
     if (name == "--out" || name == "--csv" || name == "--save-state" || name == "scene")
       o->type_name("PATH");
   }

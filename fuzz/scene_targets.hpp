@@ -7,7 +7,9 @@
 /// input must end in massspring::Error (which the caller catches); anything else is a bug.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <massspring/integrators/with_integrator.hpp>
 #include <massspring/io/fosssim_scene.hpp>
 #include <massspring/io/json_scene.hpp>
 #include <massspring/massspring.hpp>
@@ -46,30 +48,22 @@ inline void run_fosssim_scene_input(std::string_view input) {
   const io::FosssimScene scene = io::parse_fosssim_scene(std::string(input), "fuzz/scene.xml");
   (void)scene.steps();
   FuzzSystem system = io::make_fosssim_system<FuzzSystem>(scene);
-  switch (scene.integrator) {
-    case io::FosssimIntegrator::ExplicitEuler: {
-      ForwardEuler<FuzzSystem> integrator;
-      integrator.precompute(system, scene.dt);
-      (void)integrator.step(system);
-      break;
-    }
-    case io::FosssimIntegrator::SymplecticEuler: {
-      SymplecticEuler<FuzzSystem> integrator;
-      integrator.precompute(system, scene.dt);
-      (void)integrator.step(system);
-      break;
-    }
-    case io::FosssimIntegrator::LinearizedImplicitEuler:
-    case io::FosssimIntegrator::ImplicitEuler: {
-      BackwardEuler<FuzzSystem> integrator;
-      integrator.options.mode = scene.integrator == io::FosssimIntegrator::ImplicitEuler
-                                    ? BackwardEulerMode::Newton
-                                    : BackwardEulerMode::Linearized;
-      integrator.precompute(system, scene.dt);
-      (void)integrator.step(system);
-      break;
-    }
+  with_integrator<FuzzSystem>(io::integrator_kind(scene.integrator), [&](auto& integrator) {
+    integrator.precompute(system, scene.dt);
+    (void)integrator.step(system);
+  });
+}
+
+/// @brief A libFuzzer entry point's body: runs `target` on the input; massspring::Error (a clear
+/// refusal) is fine, anything else escapes and is a finding. Returns 0, as libFuzzer expects.
+inline int fuzz_input(void (*target)(std::string_view), const std::uint8_t* data,
+                      std::size_t size) {
+  try {
+    target(std::string_view(reinterpret_cast<const char*>(data), size));
+  } catch (const Error&) {
+    // refused clearly: fine
   }
+  return 0;
 }
 
 }  // namespace massspring::fuzz

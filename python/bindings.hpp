@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>  // in every file: the casters must be the same everywhere
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <initializer_list>
 #include <massspring/massspring.hpp>
 #include <string>
@@ -62,6 +63,13 @@ py::array_t<double> copy_array(const Eigen::DenseBase<Derived>& m, bool vector =
   }
   py::array_t<double> out({c.rows(), c.cols()});
   std::copy(c.data(), c.data() + c.size(), out.mutable_data());
+  return out;
+}
+
+/// @brief A new (k, 2) int32 numpy array holding a copy of `edges` (point index pairs).
+inline py::array_t<int> copy_edges(const Edges& edges) {
+  py::array_t<int> out({edges.rows(), Eigen::Index(2)});
+  std::copy(edges.data(), edges.data() + edges.size(), out.mutable_data());  // row-major
   return out;
 }
 

@@ -52,13 +52,7 @@ void bind_scene_files(py::module_& m) {
           "The system (part of this object: it lives as long as the scene does).")
       .def_readonly("faces", &Loaded::faces, "Polygons to draw (0-based point indices).")
       .def_property_readonly(
-          "edges",
-          [](const Loaded& s) {
-            py::array_t<int> out({s.edges.rows(), Eigen::Index(2)});
-            std::copy(s.edges.data(), s.edges.data() + s.edges.size(), out.mutable_data());
-            return out;
-          },
-          "(k, 2) segments to draw.")
+          "edges", [](const Loaded& s) { return copy_edges(s.edges); }, "(k, 2) segments to draw.")
       .def_readonly("files", &Loaded::files, "Every file read.")
       .def_readonly("state", &Loaded::state, "True for a state saved by write_scene.")
       .def_property_readonly(

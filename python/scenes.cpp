@@ -23,12 +23,7 @@ void bind_scenes(py::module_& m) {
           "(n, 3) rest positions [m] (a copy; assign a whole array).")
       .def_readwrite("faces", &Scene::faces, "Polygons, 0-based; their sides become springs.")
       .def_property(
-          "edges",
-          [](const Scene& s) {
-            py::array_t<int> out({s.edges.rows(), Eigen::Index(2)});
-            std::copy(s.edges.data(), s.edges.data() + s.edges.size(), out.mutable_data());
-            return out;
-          },
+          "edges", [](const Scene& s) { return copy_edges(s.edges); },
           [](Scene& s, const py::handle& e) { s.edges = index_matrix(e, "edges", 2); },
           "(k, 2) springs besides the faces' (a copy; assign a whole array).")
       .def_readwrite("pinned", &Scene::pinned, "Pinned points, 0-based.")

@@ -65,12 +65,7 @@ Invalid input raises massspring.Error and builds nothing.)doc");
       "rest_positions", [](const System& s) { return copy_array(s.rest_positions()); },
       "(n, 3) rest positions [m] (a copy).");
   c.def_property_readonly(
-      "springs",
-      [](const System& s) {
-        py::array_t<int> out({s.springs().rows(), Eigen::Index(2)});
-        std::copy(s.springs().data(), s.springs().data() + s.springs().size(), out.mutable_data());
-        return out;
-      },
+      "springs", [](const System& s) { return copy_edges(s.springs()); },
       "(m, 2) point indices (a copy).");
   c.def_property(
       "masses", [](const System& s) { return copy_array(s.masses(), true); },

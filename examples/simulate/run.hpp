@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <massspring/integrators/with_integrator.hpp>
 #include <massspring/io.hpp>
 #include <massspring/io/state_scene.hpp>
 #include <massspring/massspring.hpp>
@@ -24,9 +25,6 @@ namespace simulate {
 
 constexpr int kExitBadInput = 1;  // invalid input or options; an output that cannot be written
 constexpr int kExitDiverged = 2;  // a step diverged; the last good state is kept
-
-inline const char* const kIntegrators[] = {"forward-euler", "symplectic-euler", "backward-euler",
-                                           "linearized-backward-euler", "fast-mass-spring"};
 
 // The signal (SIGINT or SIGTERM) received since the run started, or 0; the step loop stops after
 // the step in progress and the program exits 128 + the signal.
@@ -105,22 +103,6 @@ struct Setup {
   std::string name;         // the scene file or "--generate SPEC"
 };
 
-// FOSSSim's integrator names -> ours.
-inline std::string our_integrator(massspring::io::FosssimIntegrator i) {
-  using massspring::io::FosssimIntegrator;
-  switch (i) {
-    case FosssimIntegrator::ExplicitEuler:
-      return "forward-euler";
-    case FosssimIntegrator::SymplecticEuler:
-      return "symplectic-euler";
-    case FosssimIntegrator::LinearizedImplicitEuler:
-      return "linearized-backward-euler";
-    case FosssimIntegrator::ImplicitEuler:
-      return "backward-euler";
-  }
-  return "symplectic-euler";
-}
-
 inline double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
@@ -135,7 +117,8 @@ struct Plan {
   double dt = 0;
   int steps = 0;
   long long first_frame = 0;  // a saved state's frame; 0 otherwise
-  std::string integrator;
+  std::string integrator;     // its name (IntegratorNaming::Cli)
+  massspring::IntegratorKind kind = massspring::IntegratorKind::FastMassSpring;
   std::optional<double> saved_rho;               // a saved state's Chebyshev rho
   std::optional<std::vector<double>> rest_at_0;  // --shrink: rest lengths at frame 0
 };
@@ -170,13 +153,17 @@ Plan resolve(const Config& c, const Setup<System>& s) {
   p.dt = c.dt_given ? c.dt : xml ? s.fosssim->dt : saved_dt ? saved_dt->get<double>() : c.dt;
   if (!(std::isfinite(p.dt) && p.dt > 0))
     throw Error(s.name + ": key \"run\": \"dt\" must be > 0, got " + std::to_string(p.dt));
+  using massspring::IntegratorNaming;
   p.integrator = c.integrator_given ? c.integrator
-                 : xml              ? our_integrator(s.fosssim->integrator)
+                 : xml
+                     ? massspring::to_string(massspring::io::integrator_kind(s.fosssim->integrator),
+                                             IntegratorNaming::Cli)
                  : saved_integrator ? saved_integrator->get<std::string>()
                                     : "fast-mass-spring";
-  if (std::find(std::begin(kIntegrators), std::end(kIntegrators), p.integrator) ==
-      std::end(kIntegrators))
-    throw Error(s.name + ": key \"run\": unknown integrator \"" + p.integrator + "\"");
+  const std::optional<massspring::IntegratorKind> kind =
+      massspring::find_integrator(p.integrator, IntegratorNaming::Cli);
+  if (!kind) throw Error(s.name + ": key \"run\": unknown integrator \"" + p.integrator + "\"");
+  p.kind = *kind;
   long long steps = c.frames;
   if (!c.frames_given && xml) steps = s.fosssim->steps_for(p.dt);
   if (steps > 100000000)
@@ -190,14 +177,17 @@ Plan resolve(const Config& c, const Setup<System>& s) {
   auto refuse = [&](const std::vector<std::string>& given, const std::string& needs, bool applies) {
     if (!given.empty() && !applies)
       throw Error(given.front() + ": applies to " + needs + " only (this run: " + p.integrator +
-                  (p.integrator == "fast-mass-spring" ? ", --acceleration " + c.acceleration : "") +
+                  (p.kind == massspring::IntegratorKind::FastMassSpring
+                       ? ", --acceleration " + c.acceleration
+                       : "") +
                   ")");
   };
-  const bool fms = p.integrator == "fast-mass-spring";
+  const bool fms = p.kind == massspring::IntegratorKind::FastMassSpring;
   refuse(c.given_fast_mass_spring, "--integrator fast-mass-spring", fms);
   refuse(c.given_chebyshev, "--acceleration chebyshev", fms && c.acceleration == "chebyshev");
   refuse(c.given_anderson, "--acceleration anderson", fms && c.acceleration == "anderson");
-  refuse(c.given_backward_euler, "--integrator backward-euler", p.integrator == "backward-euler");
+  refuse(c.given_backward_euler, "--integrator backward-euler",
+         p.kind == massspring::IntegratorKind::BackwardEuler);
 
   if (c.shrink > 0) {
     const auto m = std::size_t(s.system.num_springs());
@@ -253,11 +243,9 @@ void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System
                                     " swamps the rest of Q in float; use --pins exact"));
 }
 
+// (with_integrator() has set options.mode from the kind.)
 template <class System>
-void configure(const Config& c, const Plan& p, massspring::BackwardEuler<System>& solver) {
-  solver.options.mode = p.integrator == "backward-euler"
-                            ? massspring::BackwardEulerMode::Newton
-                            : massspring::BackwardEulerMode::Linearized;
+void configure(const Config& c, const Plan&, massspring::BackwardEuler<System>& solver) {
   solver.options.max_iterations = c.newton_iterations;
   solver.options.tolerance = typename System::Scalar(c.newton_tolerance);
   solver.options.line_search = c.line_search == "on";
@@ -481,20 +469,8 @@ int run(const Config& c, Setup<System>& s) {
                     "linear drag)");
     }
 
-  if (p.integrator == "fast-mass-spring") {
-    massspring::FastMassSpring<System> solver;
-    return loop(c, s, p, solver, p.integrator);
-  }
-  if (p.integrator == "forward-euler") {
-    massspring::ForwardEuler<System> solver;
-    return loop(c, s, p, solver, p.integrator);
-  }
-  if (p.integrator == "symplectic-euler") {
-    massspring::SymplecticEuler<System> solver;
-    return loop(c, s, p, solver, p.integrator);
-  }
-  massspring::BackwardEuler<System> solver;
-  return loop(c, s, p, solver, p.integrator);
+  return massspring::with_integrator<System>(
+      p.kind, [&](auto& solver) { return loop(c, s, p, solver, p.integrator); });
 }
 
 }  // namespace simulate

@@ -229,27 +229,27 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
                   " (counting from 0): expected a point index (an integer >= 0), got ", v.dump());
     return int(v.get<long long>());
   };
+  // Entry i of array a, an array of out.cols() values each read by read(key, value, i), as row i
+  // of out (sized a.size() by its columns).
+  auto fill_rows = [&](auto& out, const char* key, const Json& a, const char* shape, auto read) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (!a[i].is_array() || a[i].size() != std::size_t(out.cols()))
+        throw error("key \"", key, "\": entry ", i, " (counting from 0): expected ", shape);
+      for (std::size_t c = 0; c < a[i].size(); ++c)
+        out(Eigen::Index(i), Eigen::Index(c)) = read(key, a[i][c], i);
+    }
+  };
   auto rows = [&](const char* key, std::size_t expected_rows, bool check_rows) {
     const Json& a = require(key);
     if (check_rows && a.size() != expected_rows)
       throw error("key \"", key, "\": expected ", expected_rows, " rows, got ", a.size());
     Points<Scalar> m(Eigen::Index(a.size()), 3);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (!a[i].is_array() || a[i].size() != 3)
-        throw error("key \"", key, "\": entry ", i, " (counting from 0): expected [x, y, z]");
-      for (std::size_t c = 0; c < 3; ++c)
-        m(Eigen::Index(i), Eigen::Index(c)) = number(key, a[i][c], i);
-    }
+    fill_rows(m, key, a, "[x, y, z]", number);
     return m;
   };
   auto pairs = [&](const char* key, const Json& a) {
     Edges e(Eigen::Index(a.size()), 2);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (!a[i].is_array() || a[i].size() != 2)
-        throw error("key \"", key, "\": entry ", i, " (counting from 0): expected [i, j]");
-      for (std::size_t c = 0; c < 2; ++c)
-        e(Eigen::Index(i), Eigen::Index(c)) = index(key, a[i][c], i);
-    }
+    fill_rows(e, key, a, "[i, j]", index);
     return e;
   };
   auto list = [&](const char* key, std::size_t expected) {

@@ -1,28 +1,68 @@
 #pragma once
 /// @file
-/// @brief Named cloth recipes that the project's scenes, benchmarks and examples share, each as the
-/// ClothOptions that make_cloth() turns into a scene (one place for each).
+/// @brief Named recipes that the project's scenes, benchmarks and examples share, each as the
+/// options that make_chain(), make_net() or make_cloth() turn into a scene (one place for each).
+/// A program that varies one (a stiffness sweep, another size) starts from the recipe and says
+/// what it changes.
 
+#include "massspring/scene/chain.hpp"
 #include "massspring/scene/cloth.hpp"
+#include "massspring/scene/net.hpp"
 
 namespace massspring {
+
+/// @brief A chain like the assignment's horizontal chain: 10 points over 1 m along +x, both ends
+/// pinned, k = 500 N/m, 1 kg per point.
+inline ChainOptions chain_recipe() {
+  ChainOptions chain;
+  chain.points = 10;
+  chain.length = 1.0;
+  chain.pins = ChainPins::BothEnds;
+  chain.stiffness = 500;
+  chain.mass = 1;
+  return chain;
+}
+
+/// @brief A net like the assignment's: 8 x 8 points over 1 m x 1 m, horizontal, hung by its four
+/// corners, k = 300 N/m, 1 kg per point.
+inline NetOptions net_recipe() {
+  NetOptions net;
+  net.columns = 8;
+  net.rows = 8;
+  net.width = 1.0;
+  net.depth = 1.0;
+  net.pins = NetPins::Corners;
+  net.stiffness = 300;
+  net.mass = 1;
+  return net;
+}
+
+/// @brief A square cloth hanging from its two top corners: n x n points over 1 m x 1 m,
+/// vertical, quads with both diagonals, k = 1000 N/m, lumped Voronoi masses (1 kg in all).
+/// @param[in] n points per side, >= 2 (make_cloth() checks)
+inline ClothOptions hanging_cloth_recipe(int n) {
+  ClothOptions cloth;
+  cloth.columns = n;
+  cloth.rows = n;
+  cloth.width = 1.0;
+  cloth.height = 1.0;
+  cloth.shear = ClothShear::Both;
+  cloth.bending = false;
+  cloth.plane = ClothPlane::Vertical;
+  cloth.pins = ClothPins::TopCorners;
+  cloth.stiffness = 1000;
+  cloth.mass.reset();
+  return cloth;
+}
 
 /// @brief The curtain of Liu et al. 2013 ("Fast Simulation of Mass-Spring Systems", section 6):
 /// 81 x 81 points over 1 m x 1 m, vertical, one diagonal per cell, skip-one bending springs,
 /// hanging from its two top corners, k = 1000 N/m, lumped Voronoi masses (1 kg in all): 6561
 /// points, 32158 springs.
 inline ClothOptions curtain_recipe() {
-  ClothOptions curtain;
-  curtain.columns = 81;
-  curtain.rows = 81;
-  curtain.width = 1.0;
-  curtain.height = 1.0;
+  ClothOptions curtain = hanging_cloth_recipe(81);
   curtain.shear = ClothShear::One;
   curtain.bending = true;
-  curtain.plane = ClothPlane::Vertical;
-  curtain.pins = ClothPins::TopCorners;
-  curtain.stiffness = 1000;
-  curtain.mass.reset();
   return curtain;
 }
 

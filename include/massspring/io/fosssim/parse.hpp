@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <pugixml.hpp>
 #include <string>
 #include <string_view>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "massspring/error.hpp"
+#include "massspring/integrators/integrator_kind.hpp"
 #include "massspring/io/detail/text_file.hpp"
 #include "massspring/io/fosssim/reader.hpp"
 #include "massspring/io/fosssim/scene.hpp"
@@ -115,23 +117,13 @@ inline FosssimScene parse_fosssim_scene(const std::string& text, const std::stri
   {
     const std::string_view type =
         detail::FosssimReader::trimmed(integrator.attribute("type").value());
-    bool found = false;
-    for (FosssimIntegrator candidate :
-         {FosssimIntegrator::ExplicitEuler, FosssimIntegrator::SymplecticEuler,
-          FosssimIntegrator::LinearizedImplicitEuler, FosssimIntegrator::ImplicitEuler})
-      if (type == to_string(candidate)) {
-        scene.integrator = candidate;
-        found = true;
-      }
-    if (type == "forward-backward-euler") {  // Theme 2's name of the same method
-      scene.integrator = FosssimIntegrator::SymplecticEuler;
-      found = true;
-    }
-    if (!found)
+    const std::optional<IntegratorKind> kind = find_integrator(type, IntegratorNaming::Fosssim);
+    if (!kind)
       throw r.error(r.line(integrator), "<integrator>: unknown type \"",
-                    integrator.attribute("type").value(),
-                    "\" (expected explicit-euler, symplectic-euler, forward-backward-euler, "
-                    "linearized-implicit-euler or implicit-euler)");
+                    integrator.attribute("type").value(), "\" (expected ",
+                    integrator_name_list(IntegratorNaming::Fosssim), ")");
+    // IntegratorNaming::Fosssim names only the four kinds FosssimIntegrator holds
+    scene.integrator = FosssimIntegrator(int(*kind));
     scene.dt = r.nonnegative(integrator, "<integrator>", "dt", true);
   }
 

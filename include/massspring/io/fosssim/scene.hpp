@@ -10,31 +10,30 @@
 #include <string>
 #include <vector>
 
+#include "massspring/integrators/integrator_kind.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::io {
 
-/// @brief The integrator a FOSSSim scene asks for (its `<integrator type>`).
+/// @brief The integrator a FOSSSim scene asks for (its `<integrator type>`): the four Euler
+/// methods of IntegratorKind, whose FOSSSim names (IntegratorNaming::Fosssim) the scene uses.
 enum class FosssimIntegrator {
-  ExplicitEuler,    ///< "explicit-euler": massspring::ForwardEuler
-  SymplecticEuler,  ///< "symplectic-euler" (Theme 2: "forward-backward-euler"): SymplecticEuler
-  LinearizedImplicitEuler,  ///< "linearized-implicit-euler": BackwardEuler, Linearized mode
-  ImplicitEuler,            ///< "implicit-euler": BackwardEuler, Newton mode
+  ExplicitEuler = int(IntegratorKind::ForwardEuler),  ///< "explicit-euler": ForwardEuler
+  /// "symplectic-euler" (Theme 2: "forward-backward-euler"): SymplecticEuler
+  SymplecticEuler = int(IntegratorKind::SymplecticEuler),
+  /// "linearized-implicit-euler": BackwardEuler, Linearized mode
+  LinearizedImplicitEuler = int(IntegratorKind::LinearizedBackwardEuler),
+  ImplicitEuler = int(IntegratorKind::BackwardEuler),  ///< "implicit-euler": BackwardEuler, Newton
 };
+
+/// @brief The IntegratorKind a FOSSSim integrator is.
+constexpr IntegratorKind integrator_kind(FosssimIntegrator integrator) {
+  return IntegratorKind(int(integrator));
+}
 
 /// @brief The XML name of an integrator ("explicit-euler", ...).
 inline const char* to_string(FosssimIntegrator integrator) {
-  switch (integrator) {
-    case FosssimIntegrator::ExplicitEuler:
-      return "explicit-euler";
-    case FosssimIntegrator::SymplecticEuler:
-      return "symplectic-euler";
-    case FosssimIntegrator::LinearizedImplicitEuler:
-      return "linearized-implicit-euler";
-    case FosssimIntegrator::ImplicitEuler:
-      return "implicit-euler";
-  }
-  return "?";
+  return to_string(integrator_kind(integrator), IntegratorNaming::Fosssim);
 }
 
 /// @brief The collision response a FOSSSim scene asks for (its `<collision type>`).

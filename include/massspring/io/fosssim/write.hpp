@@ -37,6 +37,13 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
     append_number(out, x);
     out += '"';
   };
+  auto index_attribute = [&out](const char* name, int i) {
+    out += ' ';
+    out += name;
+    out += "=\"";
+    append_index(out, i);
+    out += '"';
+  };
   auto escaped = [](const std::string& s) {
     std::string e;
     for (char c : s) {
@@ -91,9 +98,7 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
       attribute("thickness", c.thickness);
     }
     if (c.type == FosssimCollision::Hybrid) {
-      out += " maxiters=\"";
-      append_index(out, c.max_iterations);
-      out += '"';
+      index_attribute("maxiters", c.max_iterations);
     }
     out += "/>\n";
   }
@@ -112,11 +117,9 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
     out += "/>\n";
   }
   for (Eigen::Index e = 0; e < scene.edges.rows(); ++e) {
-    out += "  <edge i=\"";
-    append_index(out, scene.edges(e, 0));
-    out += "\" j=\"";
-    append_index(out, scene.edges(e, 1));
-    out += '"';
+    out += "  <edge";
+    index_attribute("i", scene.edges(e, 0));
+    index_attribute("j", scene.edges(e, 1));
     if (scene.edge_radius(int(e)) != FosssimScene::kDefaultEdgeRadius)
       attribute("radius", scene.edge_radius(int(e)));
     out += "/>\n";
@@ -130,9 +133,8 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
     out += "/>\n";
   }
   for (const auto& s : scene.springs) {
-    out += "  <springforce edge=\"";
-    append_index(out, s.edge);
-    out += '"';
+    out += "  <springforce";
+    index_attribute("edge", s.edge);
     attribute("k", s.k);
     attribute("l0", s.l0);
     attribute("b", s.b);
@@ -145,20 +147,16 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
     out += "/>\n";
   }
   for (const auto& a : scene.attractions) {
-    out += "  <gravitationalforce i=\"";
-    append_index(out, a.i);
-    out += "\" j=\"";
-    append_index(out, a.j);
-    out += '"';
+    out += "  <gravitationalforce";
+    index_attribute("i", a.i);
+    index_attribute("j", a.j);
     attribute("G", a.G);
     out += "/>\n";
   }
   for (const auto& v : scene.vortices) {
-    out += "  <vortexforce i=\"";
-    append_index(out, v.i);
-    out += "\" j=\"";
-    append_index(out, v.j);
-    out += '"';
+    out += "  <vortexforce";
+    index_attribute("i", v.i);
+    index_attribute("j", v.j);
     attribute("kbs", v.kbs);
     attribute("kvc", v.kvc);
     out += "/>\n";
