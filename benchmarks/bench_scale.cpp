@@ -12,12 +12,15 @@
 //   bench_scale --out scale.json                         # the sweep 32, 64, 128, 256, 512
 //   bench_scale --grid 1000 --frames 10 --out big.json   # one grid (1000 x 1000: a million points)
 //
-// Timing is wall clock (std::chrono::steady_clock), the median over the frames: at least
-// `--frames` of them and at least `--min-time` seconds of them, so that the small grids (a step of
-// 32 x 32 takes half a millisecond) are timed over a thousand steps, not five, and a burst of
-// outside load cannot move their median. This is a plain program, not Google Benchmark, because
-// one 1000 x 1000 precompute takes tens of seconds and the peak memory is the process's.
+// Times are the calling thread's CPU time (one thread's work, without the time other processes
+// held the core), except the two-thread iteration (wall clock: the calling thread's CPU time
+// leaves the other out). Each is the median over the frames: at least `--frames` of them and at
+// least `--min-time` seconds of them, so that the small grids (a step of 32 x 32 takes half a
+// millisecond) are timed over a thousand steps, not five. This is a plain program, not Google
+// Benchmark, because one 1000 x 1000 precompute takes tens of seconds and the peak memory is the
+// process's.
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -42,6 +45,14 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// CPU time of the calling thread [s]: one thread's work without the time other processes held
+// the core.
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 // One grid's figures (see the header).
 struct Row {
   int grid = 0, points = 0, springs = 0;
@@ -57,39 +68,42 @@ double peak_rss_mib() {
 }
 
 Row run(int n, int frames, double min_time, int iterations) {
-  const auto t_scene = Clock::now();
+  const double t_scene = thread_cpu_s();
   massspring::ClothOptions o;
   o.columns = o.rows = n;
   o.shear = massspring::ClothShear::Both;
   o.pins = massspring::ClothPins::TopCorners;
   o.stiffness = 1000;
   System system = massspring::make_system<System>(massspring::make_cloth(o));
-  const double scene_s = seconds_since(t_scene);
+  const double scene_s = thread_cpu_s() - t_scene;
 
   massspring::FastMassSpring<System> solver;
   solver.options.gravity = {0, -9.8, 0};
   solver.options.iterations = iterations;
-  const auto t_pre = Clock::now();
+  const double t_pre = thread_cpu_s();
   solver.precompute(system, 1.0 / 30);
-  const double precompute_s = seconds_since(t_pre);
+  const double precompute_s = thread_cpu_s() - t_pre;
 
   bool finite = true;
-  // Median wall-clock ms per iteration over the frames.
-  const auto time_frames = [&] {
+  // Median ms per iteration over the frames: the thread's CPU time (one thread) or the wall clock
+  // (two threads: the calling thread's CPU time leaves the other out).
+  const auto time_frames = [&](bool wall) {
     std::vector<double> per_iteration;
     const auto start = Clock::now();
     for (int frame = 0; frame < frames || seconds_since(start) < min_time; ++frame) {
-      const auto t0 = Clock::now();
+      const auto w0 = Clock::now();
+      const double c0 = thread_cpu_s();
       const massspring::StepReport r = solver.step(system);
-      per_iteration.push_back(seconds_since(t0) / std::max(r.iterations, 1));
+      const double seconds = wall ? seconds_since(w0) : thread_cpu_s() - c0;
+      per_iteration.push_back(seconds / std::max(r.iterations, 1));
       finite = finite && r.ok();
     }
     std::sort(per_iteration.begin(), per_iteration.end());
     return per_iteration[per_iteration.size() / 2] * 1e3;
   };
-  const double it_ms = time_frames();
+  const double it_ms = time_frames(false);
   // The floor: one forward and one back substitution with the solver's own factor (one thread,
-  // as the frames above left it), n x 3, median wall-clock ms over as many as the frames'
+  // as the frames above left it), n x 3, median ms (CPU) over as many as the frames'
   // iterations and at least min_time seconds.
   double floor_ms = 0;
   {
@@ -100,9 +114,9 @@ Row run(int n, int frames, double min_time, int iterations) {
     const auto t_start = Clock::now();
     for (int k = 0; k < frames * iterations || seconds_since(t_start) < min_time; ++k) {
       if (k % iterations == 0) x = start;  // as many solves in a row as a step's iterations
-      const auto t0 = Clock::now();
+      const double t0 = thread_cpu_s();
       solver.factorization().solve_in_place(x.data());
-      per_solve.push_back(seconds_since(t0));
+      per_solve.push_back(thread_cpu_s() - t0);
     }
     std::sort(per_solve.begin(), per_solve.end());
     floor_ms = per_solve[per_solve.size() / 2] * 1e3;
@@ -110,7 +124,7 @@ Row run(int n, int frames, double min_time, int iterations) {
   double it2_ms = -1;  // -1: not built with OpenMP
 #ifdef _OPENMP
   solver.options.threads = 2;
-  it2_ms = time_frames();
+  it2_ms = time_frames(true);
 #endif
   Row r;
   r.grid = n;

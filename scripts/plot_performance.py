@@ -41,6 +41,9 @@ FACTORIZATIONS = {
 }
 
 
+CONTEXT = ("context",)  # the key of a program's Google Benchmark context in load_gbench()'s result
+
+
 class Missing(Exception):
     """An input file is not there."""
 
@@ -51,7 +54,9 @@ def load_gbench(path):
     if not path.exists():
         raise Missing(path.name)
     runs = {}
-    for b in json.loads(path.read_text())["benchmarks"]:
+    data = json.loads(path.read_text())
+    runs[CONTEXT] = data["context"]
+    for b in data["benchmarks"]:
         if b.get("error_occurred"):
             continue
         key = tuple(b["run_name"].split("/")[:3])
@@ -89,8 +94,16 @@ def table(header, rows):
     return "\n".join(lines)
 
 
+def when(runs, program):
+    """The line under a table: which program, when, and the load average at its start."""
+    c = runs[CONTEXT]
+    load = ", ".join(f"{x:.2f}" for x in c.get("load_avg", []))
+    return (f"\n\n`{program}`, {c['date'][:16].replace('T', ' ')}, load average {load or '-'} "
+            "at its start.")
+
+
 def scenes_in(runs):
-    names = {k[2] for k in runs}
+    names = {k[2] for k in runs if len(k) == 3}
     return [s for s in SCENES if s in names] + sorted(names - set(SCENES))
 
 
@@ -144,7 +157,8 @@ def step_block(perf):
     return table(["scene", "points", "springs", "nnz(L)", "ours ms/step", "ours ms/iteration",
                   "floor ms", "ours iteration/floor", "seed ms/step", "seed/ours",
                   "seed iteration/floor", "Eigen solve/floor", "ours precompute ms",
-                  "seed precompute ms", "ours - seed after one step"], rows)
+                  "seed precompute ms", "ours - seed after one step"], rows) + when(
+                      runs, "bench_step")
 
 
 def acceleration_block(perf):
@@ -167,27 +181,27 @@ def acceleration_block(perf):
     return table(["scene", "step error of 50 plain iterations", "plain 50 ms", "seed 50 ms",
                   "Chebyshev iterations", "Chebyshev ms", "plain/Chebyshev", "seed/Chebyshev",
                   "Anderson iterations", "Anderson ms", "plain/Anderson", "seed/Anderson",
-                  "seed/Chebyshev on 2 threads (wall)"], rows)
+                  "seed/Chebyshev on 2 threads (wall)"], rows) + when(runs, "bench_acceleration")
 
 
 def options_block(perf):
     runs = load_gbench(perf / "options.json")
-    variants = [("SparseNoSimd", "simd = false"), ("SparseExact", "exact pins"),
-                ("SparseFloat", "float, exact pins"), ("SparseAMD", "AMD order")]
+    # (variant, the variant it is divided by, column name)
+    variants = [("SparseNoSimd", "Sparse", "simd = false"), ("SparseExact", "Sparse", "exact pins"),
+                ("SparseFloat", "SparseExact", "float / double, exact pins"),
+                ("SparseAMD", "Sparse", "AMD order")]
     rows = []
     for s in scenes_in(runs):
-        base = get(runs, "Step", "Sparse", s)
-        row = [s, fmt(base, ".2f")]
-        for v, _ in variants:
-            row.append(fmt(ratio(get(runs, "Step", v, s), base), ".2f"))
-        base_floor = get(runs, "Floor", "Sparse", s)
-        row.append(fmt(base_floor, ".3f"))
-        for v, _ in variants:
-            row.append(fmt(ratio(get(runs, "Floor", v, s), base_floor), ".2f"))
+        row = [s, fmt(get(runs, "Step", "Sparse", s), ".2f")]
+        for v, base, _ in variants:
+            row.append(fmt(ratio(get(runs, "Step", v, s), get(runs, "Step", base, s)), ".2f"))
+        row.append(fmt(get(runs, "Floor", "Sparse", s), ".3f"))
+        for v, base, _ in variants:
+            row.append(fmt(ratio(get(runs, "Floor", v, s), get(runs, "Floor", base, s)), ".2f"))
         rows.append(row)
-    header = (["scene", "default ms/step"] + [f"step: {n}" for _, n in variants]
-              + ["default floor ms"] + [f"floor: {n}" for _, n in variants])
-    return table(header, rows)
+    header = (["scene", "default ms/step"] + [f"step: {n}" for _, _, n in variants]
+              + ["default floor ms"] + [f"floor: {n}" for _, _, n in variants])
+    return table(header, rows) + when(runs, "bench_options")
 
 
 def dense_block(perf):
@@ -208,7 +222,7 @@ def dense_block(perf):
                                get(runs, "Floor", "Sparse", s)), ".2f")])
     return table(["scene", "points", "Dense precompute ms", "Sparse precompute ms",
                   "Dense ms/step", "Sparse ms/step", "Dense iteration/floor",
-                  "Sparse iteration/floor"], rows)
+                  "Sparse iteration/floor"], rows) + when(runs, "bench_options")
 
 
 def threads_block(perf):
@@ -223,22 +237,22 @@ def threads_block(perf):
                      fmt(s1, ".2f"), fmt(s2, ".2f"), fmt(ratio(s1, s2), ".2f") + "x"])
     return table(["scene", "points", "nnz(L)", "floor ms, 1 thread", "floor ms, 2 threads",
                   "floor speed-up", "step ms, 1 thread", "step ms, 2 threads", "step speed-up"],
-                 rows)
+                 rows) + when(runs, "bench_threads")
 
 
 def factorization_block(perf):
     runs = load_gbench(perf / "factorization.json")
     rows = []
-    scenes = list(dict.fromkeys(k[2] for k in runs))
+    scenes = list(dict.fromkeys(k[2] for k in runs if len(k) == 3))
     for s in scenes:
         for m, name in FACTORIZATIONS.items():
             r = runs.get(("Factorize", m, s))
             if r is None:
                 continue
-            rows.append([s, name, fmt(r.get("nnz_L"), ".0f"), fmt(r["real_ms"], ".1f"),
+            rows.append([s, name, fmt(r.get("nnz_L"), ".0f"), fmt(r["cpu_ms"], ".1f"),
                          fmt(r.get("solve_ms"), ".3f")])
     return table(["scene", "factorisation", "nnz(L)", "factorise ms", "one n x 3 solve ms"],
-                 rows)
+                 rows) + when(runs, "bench_factorization")
 
 
 def scale_rows(rows):
@@ -306,7 +320,9 @@ def plot_iteration(perf):
     ax.set_xticks(list(x))
     ax.set_xticklabels(scenes)
     ax.set_ylabel("time / floor (one L, L^T solve)")
-    ax.legend(fontsize=8)
+    top = max([v for v in ours + eigen + seed if not math.isnan(v)], default=1)
+    ax.set_ylim(0, 1.3 * top)
+    ax.legend(fontsize=8, ncol=3, loc="upper center")
     ax.grid(True, axis="y", alpha=0.3)
     fig.tight_layout()
     fig.savefig(IMAGES / "perf_iteration.png", dpi=110)
