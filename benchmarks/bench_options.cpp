@@ -38,10 +38,11 @@ std::vector<Scene>& scenes() {
   return s;
 }
 
-// Step and Floor of one variant: `proto` in `scene`, options changed by `adjust`.
+// Step and Floor of one variant: `proto` in `scene`, options changed by `adjust`. Five
+// repetitions: every ratio divides by the default's one median.
 template <class System, class Adjust>
 void add_variant(const Scene& scene, const char* solver, const System* proto, Adjust adjust) {
-  const auto how = repeated(3);
+  const auto how = repeated(5);
   const Scene* sc = &scene;
   const double simd = massspring::detail::cpu_has_avx2_fma() ? 1 : 0;
   add(how, "Step", solver, scene, [sc, proto, adjust, simd](benchmark::State& st) {
