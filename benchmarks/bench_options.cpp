@@ -1,13 +1,13 @@
-// What FastMassSpring's choices cost, each against the default in the same run: the SIMD
-// substitution and spring pass off (options.simd = false), exact pins instead of penalty pins,
-// float instead of double (exact pins: penalty pins of 1e10 need double), AMD's order instead of
-// the one FillOrdering::Auto picks, and Dense storage instead of Sparse (cloth32 only: Dense's Q
-// is n x n, its factorisation grows as n^3). Scenes and settings: support/scenes.hpp (cloth32,
-// cloth64, cloth128, curtain, flag, skirt; dt = 1/30 s, 50 iterations per step).
+// What FastMassSpring's choices cost, each against the default in the same run: the SIMD code
+// off (options.simd = false), exact pins instead of penalty pins, float instead of double (exact
+// pins: penalty pins of 1e10 need double), AMD's order instead of the one FillOrdering::Auto
+// picks, and Dense storage instead of Sparse (cloth32 only: Dense's Q is n x n, its factorisation
+// grows as n^3). Scenes and settings: support/scenes.hpp (cloth32, cloth64, cloth128, curtain,
+// flag, skirt; dt = 1/30 s, 50 iterations per step).
 //
 // Benchmarks (`<what>/<solver>/<scene>`, what = Step | Floor, Precompute for Sparse and Dense):
 //   Sparse        the default: double, penalty pins, SIMD where the CPU has AVX2 + FMA
-//   SparseNoSimd  options.simd = false (the baseline substitution and spring pass)
+//   SparseNoSimd  options.simd = false (the baseline code paths, no AVX2 + FMA)
 //   SparseExact   options.pins = PinMode::Exact
 //   SparseFloat   float, exact pins
 //   SparseAMD     options.ordering = FillOrdering::Solver (Eigen's AMD)
