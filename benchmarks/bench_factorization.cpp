@@ -1,122 +1,163 @@
-// Factorisations of FastMassSpring's Q compared: Eigen's SimplicialLLT with AMD, geometric nested
-// dissection of the rest positions (massspring::nested_dissection; its time counted in the
-// factorisation's), COLAMD and the natural ordering (SparseCholesky<Scalar, Ordering>), and, when
-// built with CHOLMOD
-// (MASSSPRING_HAS_CHOLMOD), CHOLMOD's supernodal factorisation with its own choice, AMD, METIS and
-// NESDIS (CholmodCholesky). For each: nnz(L), factorisation time (compute(): ordering, symbolic,
-// numeric; median of 3) and the time of one fused n x 3 solve with that factor (median of 21), on
-// the curtain and on cloth grids (exact pins, dt = 1/30, k = 1000). Prints a Markdown table.
-// A plain program with wall-clock medians (std::chrono::steady_clock).
+// Factorisations and orders of FastMassSpring's Q compared (exact pins, dt = 1/30 s, k = 1000 N/m,
+// Q in the points' order): for each, nnz(L), the factorisation (compute(): ordering, symbolic,
+// numeric) and one fused n x 3 substitution with that factor. On the curtain and the cloth grids
+// 128^2, 256^2 and 512^2 (support/scenes.hpp's cloths).
+//
+// Benchmarks `Factorize/<method>/<scene>`, method:
+//   EigenAMD, EigenND, EigenCOLAMD, EigenNatural   SparseCholesky (Eigen's SimplicialLLT) with
+//       AMD, geometric nested dissection of the rest positions (massspring::nested_dissection;
+//       its time counted in the factorisation's), COLAMD (up to 20000 rows: it fills ~10x more)
+//       and the natural order (up to 20000 rows: a band);
+//   CholmodDefault, CholmodAMD, CholmodMETIS, CholmodNESDIS   CholmodCholesky (supernodal) with
+//       its own choice, AMD, METIS and NESDIS, only when built with massspring::cholmod.
+// The time is one factorisation (one iteration per repetition, 3 repetitions; read cpu_time, the
+// process's CPU time, all threads). Counters: rows, nnz_L, solve_ms (the median CPU time of 21
+// substitutions, 5 above 100000 rows).
+//
+//   bench_factorization --benchmark_out=factorization.json --benchmark_out_format=json
+#include <benchmark/benchmark.h>
+#include <time.h>
+
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <functional>
+#include <exception>
 #include <massspring/integrators/fast_mass_spring.hpp>
-#include <massspring/scene/cloth.hpp>
-#include <massspring/scene/make_system.hpp>
-#include <massspring/scene/recipes.hpp>
+#include <massspring/storage/nested_dissection.hpp>
 #include <massspring/storage/storage.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 #if MASSSPRING_HAS_CHOLMOD
 #include <massspring/storage/cholmod.hpp>
 #endif
 
+#include "support/scenes.hpp"
+
 namespace {
 
-using System = massspring::MassSpringSystem<double, massspring::Sparse>;
-using Matrix = System::Matrix;
-using Clock = std::chrono::steady_clock;
+using massspring::bench::SparseSystem;
+using Matrix = SparseSystem::Matrix;
 
-double median_ms(int repetitions, const std::function<void()>& f) {
-  std::vector<double> t;
-  for (int r = 0; r < repetitions; ++r) {
-    const auto t0 = Clock::now();
-    f();
-    t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+// CPU time of the process, all its threads [ms].
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + 1e-6 * double(t.tv_nsec);
+}
+
+// Q of one scene, in the points' order, and the rest positions of its free points.
+struct Problem {
+  std::string name;
+  Matrix q;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> xyz;
+};
+
+Problem make_problem(const massspring::bench::Scene& scene) {
+  massspring::FastMassSpring<SparseSystem> solver;
+  solver.options.ordering = massspring::FillOrdering::Solver;
+  solver.precompute(*scene.sparse, 1.0 / 30);
+  Problem p;
+  p.name = scene.name;
+  p.q = solver.system_matrix();
+  p.xyz.resize(p.q.rows(), 3);
+  for (Eigen::Index r = 0; r < p.q.rows(); ++r)
+    p.xyz.row(r) = scene.sparse->rest_positions().row(solver.free_points()[std::size_t(r)]);
+  return p;
+}
+
+// Times `compute` (returns false on failure) once per iteration, then the substitution.
+template <class Cholesky, class Compute>
+void bm_factorize(benchmark::State& state, const Problem& p, Compute compute) {
+  Cholesky llt;
+  for (auto _ : state) {
+    if (!compute(llt)) {
+      state.SkipWithError("factorisation failed");
+      return;
+    }
   }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  massspring::Points<double> w = massspring::Points<double>::Random(p.q.rows(), 3);
+  std::vector<double> t;
+  const int solves = p.q.rows() > 100000 ? 5 : 21;
+  for (int r = 0; r < solves; ++r) {
+    const double t0 = process_cpu_ms();
+    llt.solve_in_place(w.data());
+    benchmark::DoNotOptimize(w.data());
+    t.push_back(process_cpu_ms() - t0);
+  }
+  std::nth_element(t.begin(), t.begin() + std::ptrdiff_t(t.size() / 2), t.end());
+  state.counters["rows"] = double(p.q.rows());
+  state.counters["nnz_L"] = double(llt.factor_nonzeros());
+  state.counters["solve_ms"] = t[t.size() / 2];
+}
+
+std::vector<std::unique_ptr<Problem>>& problems() {
+  static std::vector<std::unique_ptr<Problem>> p;
+  return p;
 }
 
 template <class Cholesky, class Compute>
-void measure(const std::string& scene, const char* name, const Matrix& q, Cholesky& llt,
-             int solve_repetitions, Compute compute) {
-  bool ok = true;
-  const double factor_ms = median_ms(3, [&] { ok = compute() && ok; });
-  if (!ok) {
-    std::printf("| %s | %s | failed | | |\n", scene.c_str(), name);
-    return;
-  }
-  massspring::Points<double> w = massspring::Points<double>::Random(q.rows(), 3);
-  const double solve_ms = median_ms(solve_repetitions, [&] { llt.solve_in_place(w.data()); });
-  std::printf("| %s | %s | %ld | %.2f | %.4f |\n", scene.c_str(), name, long(llt.factor_nonzeros()),
-              factor_ms, solve_ms);
-  std::fflush(stdout);
+void add(const char* method, const Problem& p, Compute compute) {
+  benchmark::RegisterBenchmark(
+      ("Factorize/" + std::string(method) + "/" + p.name).c_str(),
+      [&p, compute](benchmark::State& st) { bm_factorize<Cholesky>(st, p, compute); })
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1)
+      ->Repetitions(3)
+      ->DisplayAggregatesOnly(true)
+      ->MeasureProcessCPUTime();
 }
 
-template <class Cholesky>
-void measure(const std::string& scene, const char* name, const Matrix& q, Cholesky& llt,
-             int solve_repetitions) {
-  measure(scene, name, q, llt, solve_repetitions, [&] { return llt.compute(q); });
-}
-
-void compare(const std::string& scene, const massspring::ClothOptions& o) {
-  const System system = massspring::make_system<System>(massspring::make_cloth(o));
-  massspring::FastMassSpring<System> solver;
-  solver.options.ordering = massspring::FillOrdering::Solver;
-  solver.precompute(system, 1.0 / 30);
-  const Matrix& q = solver.system_matrix();
-  const int reps = q.rows() > 100000 ? 5 : 21;
-  {
-    massspring::SparseCholesky<double, Eigen::AMDOrdering<int>> llt;
-    measure(scene, "Eigen SimplicialLLT, AMD", q, llt, reps);
-  }
-  {
-    Eigen::Matrix<double, Eigen::Dynamic, 3> xyz(q.rows(), 3);
-    for (Eigen::Index r = 0; r < q.rows(); ++r)
-      xyz.row(r) = system.rest_positions().row(solver.free_points()[std::size_t(r)]);
-    massspring::SparseCholesky<double> llt;
-    measure(scene, "Eigen SimplicialLLT, nested dissection", q, llt, reps, [&] {
-      return llt.compute(q, massspring::nested_dissection(xyz, massspring::graph_of(q)));
+void register_benchmarks() {
+  using Amd = massspring::SparseCholesky<double, Eigen::AMDOrdering<int>>;
+  using Given = massspring::SparseCholesky<double>;
+  using Colamd = massspring::SparseCholesky<double, Eigen::COLAMDOrdering<int>>;
+  using Natural = massspring::SparseCholesky<double, Eigen::NaturalOrdering<int>>;
+  for (const auto& problem : problems()) {
+    const Problem& p = *problem;
+    add<Amd>("EigenAMD", p, [&p](Amd& llt) { return llt.compute(p.q); });
+    add<Given>("EigenND", p, [&p](Given& llt) {
+      return llt.compute(p.q, massspring::nested_dissection(p.xyz, massspring::graph_of(p.q)));
     });
-  }
-  if (q.rows() <= 70000) {  // COLAMD (meant for LU) fills ~10x more: 43 s already at 256^2
-    massspring::SparseCholesky<double, Eigen::COLAMDOrdering<int>> llt;
-    measure(scene, "Eigen SimplicialLLT, COLAMD", q, llt, reps);
-  }
-  if (q.rows() <= 20000) {  // the natural order of a grid fills a band: n sqrt(n) entries
-    massspring::SparseCholesky<double, Eigen::NaturalOrdering<int>> llt;
-    measure(scene, "Eigen SimplicialLLT, natural", q, llt, reps);
-  }
+    if (p.q.rows() <= 20000) {
+      add<Colamd>("EigenCOLAMD", p, [&p](Colamd& llt) { return llt.compute(p.q); });
+      add<Natural>("EigenNatural", p, [&p](Natural& llt) { return llt.compute(p.q); });
+    }
 #if MASSSPRING_HAS_CHOLMOD
-  const std::pair<massspring::CholmodOrdering, const char*> orderings[] = {
-      {massspring::CholmodOrdering::Default, "CHOLMOD supernodal, its choice"},
-      {massspring::CholmodOrdering::AMD, "CHOLMOD supernodal, AMD"},
-      {massspring::CholmodOrdering::METIS, "CHOLMOD supernodal, METIS"},
-      {massspring::CholmodOrdering::NESDIS, "CHOLMOD supernodal, NESDIS"},
-  };
-  for (const auto& [ordering, name] : orderings) {
-    massspring::CholmodCholesky<double> llt;
-    llt.ordering = ordering;
-    measure(scene, name, q, llt, reps);
-  }
+    using Cholmod = massspring::CholmodCholesky<double>;
+    const std::pair<massspring::CholmodOrdering, const char*> orderings[] = {
+        {massspring::CholmodOrdering::Default, "CholmodDefault"},
+        {massspring::CholmodOrdering::AMD, "CholmodAMD"},
+        {massspring::CholmodOrdering::METIS, "CholmodMETIS"},
+        {massspring::CholmodOrdering::NESDIS, "CholmodNESDIS"},
+    };
+    for (const auto& [ordering, name] : orderings) {
+      const massspring::CholmodOrdering o = ordering;
+      add<Cholmod>(name, p, [&p, o](Cholmod& llt) {
+        llt.ordering = o;
+        return llt.compute(p.q);
+      });
+    }
 #endif
+  }
 }
 
 }  // namespace
 
-int main() {
-  std::printf(
-      "| scene | factorisation | nnz(L) | factorise ms | one n x 3 solve ms |\n"
-      "|---|---|---:|---:|---:|\n");
-  compare("curtain", massspring::curtain_recipe());
-  for (const int n : {128, 256, 512}) {
-    massspring::ClothOptions o;
-    o.columns = o.rows = n;
-    o.shear = massspring::ClothShear::Both;
-    o.stiffness = 1000;
-    compare("cloth" + std::to_string(n), o);
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  try {
+    problems().push_back(
+        std::make_unique<Problem>(make_problem(massspring::bench::curtain_scene())));
+    for (const int n : {128, 256, 512})
+      problems().push_back(
+          std::make_unique<Problem>(make_problem(massspring::bench::cloth_scene(n))));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
   }
+  register_benchmarks();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
   return 0;
 }

@@ -1,6 +1,6 @@
-// support/seed_reference.hpp: the seed's formulas (SeedFastMassSpring) against FastMassSpring set
-// up as the assignment is (penalty pins w = 1e10, a force (0, -9.8, 0) per point, iterations
-// starting from the current positions, 50 of them, dt = 1/30).
+// reference/seed/seed_reference.hpp: the seed's formulas (SeedFastMassSpring) against
+// FastMassSpring set up as the assignment is (penalty pins w = 1e10, a force (0, -9.8, 0) per
+// point, iterations starting from the current positions, 50 of them, dt = 1/30).
 #include <doctest/doctest.h>
 
 #include <Eigen/Core>
@@ -11,7 +11,7 @@
 #include <massspring/system/mass_spring_system.hpp>
 #include <vector>
 
-#include "support/seed_reference.hpp"
+#include "seed/seed_reference.hpp"
 
 namespace {
 

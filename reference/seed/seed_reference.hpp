@@ -2,7 +2,10 @@
 /// @file
 /// @brief SeedFastMassSpring: the assignment's ("the seed's") local-global loop, written straight
 /// from its formulas with Eigen's sparse products and Eigen's own SimplicialLLT solve. A test
-/// oracle for FastMassSpring and the baseline its benchmark is measured against.
+/// oracle for FastMassSpring (tests/integrators/test_seed_reference.cpp) and the baseline the
+/// benchmarks measure it against (benchmarks/bench_step.cpp). Reached through the CMake target
+/// `massspring_seed_reference` (reference/CMakeLists.txt) as "seed/seed_reference.hpp"; not
+/// installed.
 ///
 /// Deliberately plain: it forms A, M, K, C and Q with sparse products, allocates in every
 /// iteration and solves with `SimplicialLLT::solve` on the n x 3 right-hand side. It shares no code
