@@ -23,10 +23,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <memory>
 #include <vector>
 
+#include "support/main.hpp"
 #include "support/scenes.hpp"
 #include "support/timing.hpp"
 
@@ -177,17 +177,11 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  try {
-    scenes().push_back(measure(curtain_scene()));
-    for (Scene& s : jacobson_scene("skirt")) scenes().push_back(measure(std::move(s)));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return massspring::bench::run_benchmarks(
+      argc, argv,
+      [] {
+        scenes().push_back(measure(curtain_scene()));
+        for (Scene& s : jacobson_scene("skirt")) scenes().push_back(measure(std::move(s)));
+      },
+      register_benchmarks);
 }

@@ -19,8 +19,6 @@
 #include <time.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <exception>
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/storage/nested_dissection.hpp>
 #include <massspring/storage/storage.hpp>
@@ -31,6 +29,7 @@
 #include <massspring/storage/cholmod.hpp>
 #endif
 
+#include "support/main.hpp"
 #include "support/scenes.hpp"
 
 namespace {
@@ -144,20 +143,14 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  try {
-    problems().push_back(
-        std::make_unique<Problem>(make_problem(massspring::bench::curtain_scene())));
-    for (const int n : {128, 256, 512})
-      problems().push_back(
-          std::make_unique<Problem>(make_problem(massspring::bench::cloth_scene(n))));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return massspring::bench::run_benchmarks(
+      argc, argv,
+      [] {
+        problems().push_back(
+            std::make_unique<Problem>(make_problem(massspring::bench::curtain_scene())));
+        for (const int n : {128, 256, 512})
+          problems().push_back(
+              std::make_unique<Problem>(make_problem(massspring::bench::cloth_scene(n))));
+      },
+      register_benchmarks);
 }

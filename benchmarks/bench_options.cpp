@@ -17,11 +17,10 @@
 //   build/benchmarks/bench_options --benchmark_out=options.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
-#include <exception>
 #include <massspring/detail/simd.hpp>
 #include <vector>
 
+#include "support/main.hpp"
 #include "support/scenes.hpp"
 #include "support/timing.hpp"
 
@@ -75,19 +74,13 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  try {
-    Build build;
-    build.single = true;
-    scenes() = standard_scenes(build);
-    scenes().front() = cloth_scene(32, Build{true, true});  // Dense on the smallest grid only
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return massspring::bench::run_benchmarks(
+      argc, argv,
+      [] {
+        Build build;
+        build.single = true;
+        scenes() = standard_scenes(build);
+        scenes().front() = cloth_scene(32, Build{true, true});  // Dense on the smallest grid only
+      },
+      register_benchmarks);
 }

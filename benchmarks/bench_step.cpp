@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "support/main.hpp"
 #include "support/scenes.hpp"
 #include "support/timing.hpp"
 
@@ -160,16 +161,6 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  try {
-    scenes() = standard_scenes();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return massspring::bench::run_benchmarks(
+      argc, argv, [] { scenes() = standard_scenes(); }, register_benchmarks);
 }

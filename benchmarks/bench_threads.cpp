@@ -10,11 +10,10 @@
 //   build/benchmarks/bench_threads --benchmark_out=threads.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
-#include <exception>
 #include <string>
 #include <vector>
 
+#include "support/main.hpp"
 #include "support/scenes.hpp"
 #include "support/timing.hpp"
 
@@ -50,17 +49,11 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  try {
-    for (const int n : {8, 16}) scenes().push_back(cloth_scene(n));
-    for (Scene& s : standard_scenes()) scenes().push_back(std::move(s));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return massspring::bench::run_benchmarks(
+      argc, argv,
+      [] {
+        for (const int n : {8, 16}) scenes().push_back(cloth_scene(n));
+        for (Scene& s : standard_scenes()) scenes().push_back(std::move(s));
+      },
+      register_benchmarks);
 }
