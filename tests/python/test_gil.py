@@ -141,7 +141,10 @@ def test_a_system_in_use_by_a_step_is_refused_elsewhere():
     s, solver = cloth(10)
     start = time.perf_counter()
     solver.step(s)
-    solver.options.iterations = max(10, int(10 * 0.3 / (time.perf_counter() - start)))
+    # About a second of step: far longer than the 50 ms sleep and the checks below, even on a
+    # loaded machine (at 0.3 s, a step that ran alone on a core while the calibration shared one
+    # ended before the checks).
+    solver.options.iterations = max(10, int(10 * 1.0 / (time.perf_counter() - start)))
     other, other_solver = cloth(5)
     started, done = threading.Event(), threading.Event()
 
@@ -168,7 +171,8 @@ def test_a_system_in_use_by_a_step_is_refused_elsewhere():
     assert other_solver.step(other).ok()  # another system and solver: free
     thread.join()
     print(f"busy {busy}, refused {refused}")
-    if busy:  # the step outlasted the checks (it takes ~0.3 s; the checks microseconds)
-        assert refused == [True] * 9
+    if not busy:  # the step ended before the checks: the calls that changed s prove nothing
+        pytest.skip(f"the step ended before the checks (refused {refused}): machine too loaded")
+    assert refused == [True] * 9
     assert solver.step(s).ok() and s.positions.shape == (1600, 3)
     assert s.forces == ["gravity"] and s.num_colliders == 0 and s.pinned == [0, 39]
