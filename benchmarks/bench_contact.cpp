@@ -4,7 +4,8 @@
 //   cloth over a sphere onto a floor) with and without the two colliders, from the same state: the
 //   cloth after 1.2 s of falling with the colliders (resting on the sphere, its edges on the
 //   floor), restored before every step. FastMassSpring with 10 plain iterations (the issue's
-//   figure: with/without <= 1.3), Chebyshev, and symplectic Euler at its stable step.
+//   figure: with/without <= 1.3), the same with the contact term inside the iteration
+//   (ContactTerm: options.contact_weight = 1), Chebyshev, and symplectic Euler at its stable step.
 // - MeshQuery/<triangles>: the mesh collider's queries (the bounding-volume hierarchy, then the
 //   closest point within the thickness and the segment's first crossing) for 4096 points
 //   against a closed mesh (a subdivided icosahedron) of 80 .. 81920 triangles: time per point
@@ -90,6 +91,17 @@ void Drape_Chebyshev(benchmark::State& state) {
       },
       1.0 / 60);
 }
+// The opt-in contact term inside the iteration (options.contact_weight = 1,
+// local_global/contact_projection.hpp): each iteration projects every point through the colliders.
+void Drape_ContactTerm(benchmark::State& state) {
+  run_drape<FastMassSpring>(
+      state,
+      [](FastMassSpring& fms) {
+        fms.options.iterations = 10;
+        fms.options.contact_weight = 1;
+      },
+      1.0 / 60);
+}
 void Drape_SymplecticEuler(benchmark::State& state) {
   run_drape<massspring::SymplecticEuler<System>>(
       state, [](auto&) {}, massspring::stable_time_step(drape_system(false)));
@@ -99,6 +111,7 @@ BENCHMARK(Drape_FastMassSpring)
     ->Arg(0)
     ->Arg(1)
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(Drape_ContactTerm)->ArgName("colliders")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Drape_Chebyshev)->ArgName("colliders")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Drape_SymplecticEuler)
     ->ArgName("colliders")
