@@ -2,11 +2,10 @@
 /// @file
 /// @brief The AVX2 + FMA code paths: compiled with a target attribute, chosen at run time.
 ///
-/// On x86-64 with GCC or Clang, the hot loops that gain from 256-bit vectors (the substitutions
-/// with the factor of Q, the spring pass's square roots and divisions) have a version compiled
-/// for AVX2 and FMA next to the baseline (SSE2) one, and run it when the CPU has both, whatever
-/// the compiler's -m flags. Defining MASSSPRING_NO_AVX2 before including any massspring header
-/// leaves those versions out.
+/// On x86-64 with GCC or Clang, the substitutions with the factor of Q
+/// (storage/lower_factor_simd.hpp) have a version compiled for AVX2 and FMA next to the baseline
+/// (SSE2) one, and run it when the CPU has both, whatever the compiler's -m flags. Defining
+/// MASSSPRING_NO_AVX2 before including any massspring header leaves those versions out.
 
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(MASSSPRING_NO_AVX2)
 /// Defined when the AVX2 + FMA versions are compiled in.
@@ -28,8 +27,6 @@
 #endif
 
 #if defined(__GNUC__)
-/// A function the compiler must inline (the pieces of a hot loop, also into its AVX2 version).
-#define MASSSPRING_ALWAYS_INLINE __attribute__((always_inline)) inline
 /// The same for a lambda (after its parameter list): the spring pass's per-pair lambda must not
 /// be called with its arrays in memory.
 #define MASSSPRING_LAMBDA_ALWAYS_INLINE __attribute__((always_inline))
@@ -37,7 +34,6 @@
 /// places, compiled once instead of at each (the call costs nothing next to the loop).
 #define MASSSPRING_NOINLINE __attribute__((noinline))
 #else
-#define MASSSPRING_ALWAYS_INLINE inline
 #define MASSSPRING_LAMBDA_ALWAYS_INLINE
 #define MASSSPRING_NOINLINE
 #endif
