@@ -92,65 +92,13 @@ class FastMassSpring {
   /// @brief Builds and factorises Q for this system and time step dt [s] (finite, > 0).
   /// Allocates every buffer step() needs. Throws massspring::Error on bad input or when Q cannot
   /// be factorised.
-  void precompute(const System& system, Scalar dt) {
-    if (!(std::isfinite(dt) && dt > 0))
-      throw Error(detail::message("FastMassSpring: dt must be finite and > 0, got ", dt));
-    check_options();
-    dt_ = dt;
-    if (!build(system)) throw Error(factorisation_message());
-  }
+  void precompute(const System& system, Scalar dt);
 
   /// @brief Advances the system by one time step dt. Returns what happened: when Q had to be
   /// factorised again and could not be (report.factorization_failed), or when the result is not
   /// finite (report.finite false), the system keeps its previous state. Throws massspring::Error
   /// only for invalid options, or when precompute() was not called.
-  StepReport step(System& system) {
-    if (!(dt_ > 0)) throw Error("FastMassSpring: step() before precompute()");
-    check_options();
-    StepReport report;
-    if (!factored_ || system.revision() != revision_ || system.num_points() != reduced_.n ||
-        options.pins != pins_ || (pins_ == PinMode::Penalty && options.penalty_weight != weight_) ||
-        options.ordering != ordering_ || system.colliders().empty() == with_contact_ ||
-        (with_contact_ && options.contact_weight != contact_weight_)) {
-      report.refactorized = true;
-      if (!build(system)) {
-        report.factorization_failed = true;
-        return report;
-      }
-    }
-    apply_threads();
-    prepare(system);
-    Scalar* result = nullptr;
-    Iteration it{this};
-    const int cap = options.iterations;
-    const double tolerance = double(options.tolerance);
-    switch (options.acceleration) {
-      case Acceleration::None:
-        result = run_plain(report);
-        break;
-      case Acceleration::Chebyshev: {
-        // Estimated once per factorisation (0, "no acceleration", when the trial iterations do
-        // not give a rate in (0, 1), e.g. when they converge to rounding).
-        if (!(options.chebyshev_rho > 0) && !rho_estimated_) {
-          estimate_rho();
-          prepare(system);
-        }
-        local_global::Chebyshev<Scalar> chebyshev(
-            {buffers_[0].data(), buffers_[1].data(), buffers_[2].data(), buffers_[3].data()},
-            reduced_.nr, reduced_.nx, double(chebyshev_rho()), double(options.chebyshev_gamma),
-            options.chebyshev_delay);
-        result = local_global::guarded_loop(it, chebyshev, cap, tolerance, report, rejections_);
-        break;
-      }
-      case Acceleration::Anderson:
-        anderson_.start({buffers_[0].data(), buffers_[1].data(), buffers_[2].data(),
-                         buffers_[3].data(), buffers_[4].data()},
-                        reduced_.nr, options.anderson_window);
-        result = local_global::guarded_loop(it, anderson_, cap, tolerance, report, rejections_);
-        break;
-    }
-    return commit(system, result, report);
-  }
+  StepReport step(System& system);
 
   /// @brief The time step of the last precompute() [s].
   [[nodiscard]] Scalar dt() const { return dt_; }
@@ -451,5 +399,76 @@ class FastMassSpring {
   bool with_contact_ = false;                        // Q was built for a system with colliders
   Scalar contact_weight_ = 0;                        // the contact weight alpha Q carries
 };
+
+template <class System, class Cholesky_>
+void FastMassSpring<System, Cholesky_>::precompute(const System& system, Scalar dt) {
+  if (!(std::isfinite(dt) && dt > 0))
+    throw Error(detail::message("FastMassSpring: dt must be finite and > 0, got ", dt));
+  check_options();
+  dt_ = dt;
+  if (!build(system)) throw Error(factorisation_message());
+}
+
+template <class System, class Cholesky_>
+StepReport FastMassSpring<System, Cholesky_>::step(System& system) {
+  if (!(dt_ > 0)) throw Error("FastMassSpring: step() before precompute()");
+  check_options();
+  StepReport report;
+  if (!factored_ || system.revision() != revision_ || system.num_points() != reduced_.n ||
+      options.pins != pins_ || (pins_ == PinMode::Penalty && options.penalty_weight != weight_) ||
+      options.ordering != ordering_ || system.colliders().empty() == with_contact_ ||
+      (with_contact_ && options.contact_weight != contact_weight_)) {
+    report.refactorized = true;
+    if (!build(system)) {
+      report.factorization_failed = true;
+      return report;
+    }
+  }
+  apply_threads();
+  prepare(system);
+  Scalar* result = nullptr;
+  Iteration it{this};
+  const int cap = options.iterations;
+  const double tolerance = double(options.tolerance);
+  switch (options.acceleration) {
+    case Acceleration::None:
+      result = run_plain(report);
+      break;
+    case Acceleration::Chebyshev: {
+      // Estimated once per factorisation (0, "no acceleration", when the trial iterations do
+      // not give a rate in (0, 1), e.g. when they converge to rounding).
+      if (!(options.chebyshev_rho > 0) && !rho_estimated_) {
+        estimate_rho();
+        prepare(system);
+      }
+      local_global::Chebyshev<Scalar> chebyshev(
+          {buffers_[0].data(), buffers_[1].data(), buffers_[2].data(), buffers_[3].data()},
+          reduced_.nr, reduced_.nx, double(chebyshev_rho()), double(options.chebyshev_gamma),
+          options.chebyshev_delay);
+      result = local_global::guarded_loop(it, chebyshev, cap, tolerance, report, rejections_);
+      break;
+    }
+    case Acceleration::Anderson:
+      anderson_.start({buffers_[0].data(), buffers_[1].data(), buffers_[2].data(),
+                       buffers_[3].data(), buffers_[4].data()},
+                      reduced_.nr, options.anderson_window);
+      result = local_global::guarded_loop(it, anderson_, cap, tolerance, report, rejections_);
+      break;
+  }
+  return commit(system, result, report);
+}
+// precompute() and step() are defined outside the class, so they are not inline: with
+// MASSSPRING_EXTERN_TEMPLATES defined, a translation unit that steps one of the four systems below
+// does not instantiate them (nor the solver machinery they call) and compiles in about the time of
+// the headers alone. Exactly one translation unit of the program must then include
+// massspring/integrators/local_global/instances.hpp, compiled with the same flags and configuration
+// macros as the others, which instantiates them (C++17 [temp.explicit]; docs/fast_mass_spring.md,
+// "Compile time").
+#ifdef MASSSPRING_EXTERN_TEMPLATES
+extern template class FastMassSpring<MassSpringSystem<double, Sparse>>;
+extern template class FastMassSpring<MassSpringSystem<float, Sparse>>;
+extern template class FastMassSpring<MassSpringSystem<double, Dense>>;
+extern template class FastMassSpring<MassSpringSystem<float, Dense>>;
+#endif
 
 }  // namespace massspring
