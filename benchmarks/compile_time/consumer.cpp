@@ -1,5 +1,6 @@
 // scripts/compile_time.sh: a consumer translation unit that includes what it needs and steps a
-// FastMassSpring<MassSpringSystem<double, Sparse>> (precompute + step), as an engine would.
+// FastMassSpring<MassSpringSystem<double, Sparse>> (precompute + step), as an engine would. The
+// test integrators.extern_templates_not_instantiated compiles it with MASSSPRING_EXTERN_TEMPLATES.
 #include <massspring/integrators/fast_mass_spring.hpp>
 
 int main() {

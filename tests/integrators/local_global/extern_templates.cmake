@@ -1,6 +1,7 @@
 # With MASSSPRING_EXTERN_TEMPLATES, a unit that steps FastMassSpring<MassSpringSystem<double,
 # Sparse>> leaves precompute() and step() undefined (nm: U) for instances.hpp's unit to define, and
-# defines no copy of its own (nm: T or W). Reads the object file of extern_consumer.cpp.
+# defines no copy of its own (nm: T or W). Reads the object file of
+# benchmarks/compile_time/consumer.cpp compiled with the macro (tests/CMakeLists.txt).
 # Usage: cmake -DNM=... -DOBJECT=... -P extern_templates.cmake
 foreach(var NM OBJECT)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
