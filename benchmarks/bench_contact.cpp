@@ -1,4 +1,4 @@
-// What contact with obstacles costs (contact/colliders.hpp, issue 22's cost items).
+// What contact with obstacles costs (contact/colliders/colliders.hpp, issue 22's cost items).
 //
 // - Drape/<integrator>/colliders:{0,1}: one step of the drape (scene/recipes.hpp: an 81 x 81
 //   cloth over a sphere onto a floor) with and without the two colliders, from the same state: the
@@ -16,7 +16,7 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <massspring/contact/colliders.hpp>
+#include <massspring/contact/colliders/colliders.hpp>
 #include <massspring/diagnostics/stable_time_step.hpp>
 #include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>

@@ -1,4 +1,4 @@
-// massspring.Collider (contact/collider.hpp): plane, sphere, capsule, box, mesh; friction,
+// massspring.Collider (contact/colliders/collider.hpp): plane, sphere, capsule, box, mesh; friction,
 // restitution, thickness, pose, velocity, angular velocity; and the system's colliders.
 // system.add_collider(c) stores a copy: change a collider in the system with
 // system.set_collider(i, c) (system.collider(i) returns a copy), never through a reference that
@@ -30,7 +30,7 @@ void bind_colliders(py::module_& m) {
       .value("Mesh", contact::ColliderShape::Mesh);
 
   py::class_<Collider> c(m, "Collider", R"doc(
-An obstacle the integrators keep the points out of (contact/collider.hpp). Lengths in m,
+An obstacle the integrators keep the points out of (contact/colliders/collider.hpp). Lengths in m,
 velocities in m/s, angular velocities in rad/s. Made by the static methods plane, sphere, capsule,
 box and mesh; the set_* methods validate, change the collider and return it (chainable).)doc");
   c.def_static(

@@ -1,8 +1,8 @@
-// The force terms (forces/*.hpp, and contact/penalty.hpp's PenaltyForce) as Python values, and
+// The force terms (forces/*.hpp, and contact/fosssim/penalty.hpp's PenaltyForce) as Python values, and
 // MassSpringSystem.add_force for each. Every constructor validates as the C++ one does; add_force
 // copies the term into the system (changing the Python object afterwards changes nothing).
 
-#include <massspring/contact/penalty.hpp>
+#include <massspring/contact/fosssim/penalty.hpp>
 #include <massspring/forces/vortex.hpp>
 #include <vector>
 
@@ -105,7 +105,7 @@ void bind_forces(py::module_& m) {
 
   py::class_<PenaltyForce>(
       m, "PenaltyForce",
-      "Penalty contact (contact/penalty.hpp): E = k/2 (s - |n|)^2 for particles, edges and "
+      "Penalty contact (contact/fosssim/penalty.hpp): E = k/2 (s - |n|)^2 for particles, edges and "
       "planes closer than s = radii + thickness.\n"
       "PenaltyForce(radii, k, thickness, edges=None, edge_radii=None, planes=(), "
       "broad_phase=BroadPhaseKind.AllPairs): radii (n,) [m]; edges (e, 2) integer with "

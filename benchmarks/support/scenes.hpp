@@ -12,7 +12,7 @@
 /// Scenes: `cloth<N>`, make_cloth() with N x N points (1 m x 1 m, quads with both diagonals, top
 /// corners pinned, k = 1000 N/m, Voronoi masses); `curtain` (massspring::curtain_recipe(): 6561
 /// points, 32158 springs); `flag` and `skirt`, read from
-/// MASSSPRING_BENCH_SHARED_DIR/scenes/jacobson when it is there and the program links
+/// shared_dir()/scenes/jacobson when it is there and the program links
 /// massspring::io (MASSSPRING_BENCH_WITH_IO=1).
 
 #include <Eigen/Core>
@@ -37,6 +37,10 @@
 #include "seed/seed_reference.hpp"
 
 namespace massspring::bench {
+
+/// @brief The folder holding scenes/jacobson (MASSSPRING_SHARED_DIR at configure time; defined in
+/// the generated shared_dir.cpp, so no other unit holds an absolute path).
+std::filesystem::path shared_dir();
 
 using SparseSystem = MassSpringSystem<double, Sparse>;
 using DenseSystem = MassSpringSystem<double, Dense>;
@@ -99,7 +103,7 @@ inline Scene curtain_scene(Build build = {}) {
 /// its file or massspring::io is missing.
 inline std::vector<Scene> jacobson_scene(const std::string& name, Build build = {}) {
   const std::filesystem::path file =
-      std::filesystem::path(MASSSPRING_BENCH_SHARED_DIR) / "scenes" / "jacobson" / (name + ".json");
+      shared_dir() / "scenes" / "jacobson" / (name + ".json");
   if (!std::filesystem::exists(file)) {
     std::fprintf(stderr, "note: %s not found; the %s benchmarks are not registered\n",
                  file.string().c_str(), name.c_str());

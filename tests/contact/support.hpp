@@ -2,7 +2,7 @@
 // Small builders shared by the contact tests: 3-vectors, geometries, a CollisionStep.
 #include <Eigen/Core>
 #include <massspring/contact/collision_handler.hpp>
-#include <massspring/contact/geometry.hpp>
+#include <massspring/contact/fosssim/geometry.hpp>
 #include <vector>
 
 namespace massspring::test {

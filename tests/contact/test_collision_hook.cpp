@@ -4,7 +4,7 @@
 // a step with the simple handler allocates nothing after the first.
 #include <doctest/doctest.h>
 
-#include <massspring/contact/simple_impulse.hpp>
+#include <massspring/contact/fosssim/simple_impulse.hpp>
 #include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/backward_euler.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <massspring/contact/penalty.hpp>
+#include <massspring/contact/fosssim/penalty.hpp>
 #include <massspring/integrators/backward_euler.hpp>
 #include <massspring/integrators/forward_euler.hpp>
 #include <massspring/integrators/symplectic_euler.hpp>

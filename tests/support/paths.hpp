@@ -1,17 +1,16 @@
 #pragma once
 // Where the tests find scenes: ../shared (not ours, read in place) and the project's own.
 #include <filesystem>
-#include <string>
 
 namespace massspring::test {
 
 /// @brief The folder holding scenes/jacobson and scenes/fosssim (MASSSPRING_SHARED_DIR).
-inline std::filesystem::path shared_dir() { return MASSSPRING_TEST_SHARED_DIR; }
+std::filesystem::path shared_dir();
+/// @brief The project's source tree (for examples/scenes).
+std::filesystem::path source_dir();
 /// @brief ../shared/scenes/jacobson
 inline std::filesystem::path jacobson_dir() { return shared_dir() / "scenes" / "jacobson"; }
 /// @brief True when ../shared/scenes/jacobson is there (CI requires it: MASSSPRING_REQUIRE_SHARED).
 inline bool have_jacobson() { return std::filesystem::is_directory(jacobson_dir()); }
-/// @brief The project's source tree (for examples/scenes).
-inline std::filesystem::path source_dir() { return MASSSPRING_TEST_SOURCE_DIR; }
 
 }  // namespace massspring::test

@@ -12,7 +12,7 @@
 /// before it commits (x_end, v_end) to the system. The integrator does not know which response
 /// the scene chose: the system carries at most one handler (MassSpringSystem::
 /// set_collision_handler()), called once per step through one virtual function, never per pair.
-/// Penalty responses are force terms instead (contact/penalty.hpp) and need no hook.
+/// Penalty responses are force terms instead (contact/fosssim/penalty.hpp) and need no hook.
 
 #include <memory>
 #include <type_traits>
@@ -87,7 +87,7 @@ class CollisionHandlerSlot {
 };
 
 /// @brief Applies the system's collision response to the end-of-step state: its handler, if it
-/// has one, then its colliders (contact/colliders.hpp), which also take their end-of-step pose.
+/// has one, then its colliders (contact/colliders/colliders.hpp), which also take their end-of-step pose.
 /// The one call an integrator makes, after computing (x_end, v_end) from (x_start, v_start) and
 /// before committing them; once the step is committed, the integrator calls
 /// system.colliders().end_step().

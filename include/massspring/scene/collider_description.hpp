@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "massspring/contact/collider.hpp"
+#include "massspring/contact/colliders/collider.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/types.hpp"

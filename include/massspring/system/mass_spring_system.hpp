@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/colliders.hpp"
+#include "massspring/contact/colliders/colliders.hpp"
 #include "massspring/contact/collision_handler.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -287,7 +287,7 @@ class MassSpringSystem {
     return collision_handler_.get();
   }
 
-  // ---- obstacles (contact/collider.hpp, contact/colliders.hpp) -------------------------------
+  // ---- obstacles (contact/colliders/collider.hpp, contact/colliders/colliders.hpp) -------------------------------
 
   /// @brief Adds an obstacle (contact::Collider<Scalar>::plane(), sphere(), capsule(), box(),
   /// mesh()) that every integrator keeps the points out of; returns its index in colliders().

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "massspring/contact/colliders.hpp"
+#include "massspring/contact/colliders/colliders.hpp"
 #include "massspring/error.hpp"
 #include "massspring/io/detail/json_text.hpp"
 

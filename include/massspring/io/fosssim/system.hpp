@@ -6,11 +6,11 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/continuous_time.hpp"
-#include "massspring/contact/geometry.hpp"
-#include "massspring/contact/hybrid.hpp"
-#include "massspring/contact/penalty.hpp"
-#include "massspring/contact/simple_impulse.hpp"
+#include "massspring/contact/fosssim/continuous_time.hpp"
+#include "massspring/contact/fosssim/geometry.hpp"
+#include "massspring/contact/fosssim/hybrid.hpp"
+#include "massspring/contact/fosssim/penalty.hpp"
+#include "massspring/contact/fosssim/simple_impulse.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/gravitational_attraction.hpp"
 #include "massspring/forces/gravity.hpp"

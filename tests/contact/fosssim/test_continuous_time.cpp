@@ -1,11 +1,11 @@
-// contact/continuous_time.hpp: a particle fast enough to cross an edge within one step is caught
+// contact/fosssim/continuous_time.hpp: a particle fast enough to cross an edge within one step is caught
 // by continuous-time detection and missed by the simple (end-of-step) one, which is why the
 // course has both; the response reflects the mean velocity with restitution e and moves the end
 // position by dt times the impulse.
 #include <doctest/doctest.h>
 
-#include <massspring/contact/continuous_time.hpp>
-#include <massspring/contact/simple_impulse.hpp>
+#include <massspring/contact/fosssim/continuous_time.hpp>
+#include <massspring/contact/fosssim/simple_impulse.hpp>
 
 #include "contact/support.hpp"
 

@@ -5,7 +5,7 @@
 /// iterates with it inside the local-global iteration (docs/contact.md).
 ///
 /// The response of a point that moves from x_s to x_e over a step of dt, with end velocity v_e,
-/// against a collider in contact (contact/collider.hpp: depth delta = thickness - phi(x_e),
+/// against a collider in contact (contact/colliders/collider.hpp: depth delta = thickness - phi(x_e),
 /// outward normal n, surface velocity u), colliders taken in the order they were added:
 ///
 /// - Position (when delta > 0): x_e += delta n, then Coulomb friction at position level on the
@@ -39,7 +39,7 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/collider.hpp"
+#include "massspring/contact/colliders/collider.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {

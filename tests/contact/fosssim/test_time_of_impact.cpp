@@ -1,12 +1,12 @@
-// contact/polynomial_intervals.hpp and contact/time_of_impact.hpp against closed forms: the
+// contact/fosssim/polynomial_intervals.hpp and contact/fosssim/time_of_impact.hpp against closed forms: the
 // first time at which polynomials are all positive; the time of impact of two particles closing
 // at a known speed, of a particle reaching a plane, of a particle reaching an edge's interior and
 // an edge's end; no impact when the motion misses or separates.
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <massspring/contact/polynomial_intervals.hpp>
-#include <massspring/contact/time_of_impact.hpp>
+#include <massspring/contact/fosssim/polynomial_intervals.hpp>
+#include <massspring/contact/fosssim/time_of_impact.hpp>
 
 #include "contact/support.hpp"
 

@@ -1,4 +1,4 @@
-// contact/colliders.hpp through the integrators (issue 22, items 2, 3 and 6): the dynamics of
+// contact/colliders/colliders.hpp through the integrators (issue 22, items 2, 3 and 6): the dynamics of
 // contact with obstacles against closed forms and invariants. A particle at rest on a plane stays
 // there; a block on an incline slides with a = g (sin t - mu cos t), or stays when mu > tan t; a
 // dropped particle rebounds to e^2 of its height; a moving plane carries (friction) or pushes
@@ -17,7 +17,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <massspring/contact/colliders.hpp>
+#include <massspring/contact/colliders/colliders.hpp>
 #include <massspring/diagnostics/divergence_guard.hpp>
 #include <massspring/diagnostics/stable_time_step.hpp>
 #include <massspring/forces/gravity.hpp>

@@ -3,7 +3,7 @@
 /// @brief Collider: an obstacle the points of a system cannot enter (a half-space, sphere,
 /// capsule, oriented box or static triangle mesh), its material (Coulomb friction, restitution,
 /// thickness) and its motion (a pose, a linear and an angular velocity). The response that uses
-/// it is in contact/colliders.hpp; docs/contact.md describes the model.
+/// it is in contact/colliders/colliders.hpp; docs/contact.md describes the model.
 ///
 /// Frames. Each shape is defined in its own local frame, whose origin is the collider's reference
 /// point: the plane's point, the sphere's, box's and capsule's centre (the capsule's midpoint),
@@ -28,10 +28,10 @@
 #include <memory>
 #include <utility>
 
-#include "massspring/contact/point_box.hpp"
-#include "massspring/contact/point_segment.hpp"
-#include "massspring/contact/rotation.hpp"
-#include "massspring/contact/triangle_mesh.hpp"
+#include "massspring/contact/distance/point_box.hpp"
+#include "massspring/contact/distance/point_segment.hpp"
+#include "massspring/contact/colliders/rotation.hpp"
+#include "massspring/contact/colliders/triangle_mesh.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/types.hpp"

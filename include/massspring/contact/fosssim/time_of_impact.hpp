@@ -5,7 +5,7 @@
 /// course's polynomial conditions (FOSSSim, Theme 2, ContinuousTimeCollisionHandler::detect* and
 /// HybridCollisionHandler::detect*). Positions at time t are x(t) = x + t dx, dx the displacement
 /// over the step; every condition is "a polynomial in t is > 0", and the time of impact is the
-/// first t where all of a pair's polynomials are (contact/polynomial_intervals.hpp).
+/// first t where all of a pair's polynomials are (contact/fosssim/polynomial_intervals.hpp).
 ///
 /// - particle-particle (1, 2), s = r1 + r2, y = x2 - x1, dy = dx2 - dx1:
 ///   distance \f$ s^2 - |y + t\,dy|^2 > 0 \f$ (quadratic), approach
@@ -23,8 +23,8 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "massspring/contact/point_plane.hpp"
-#include "massspring/contact/polynomial_intervals.hpp"
+#include "massspring/contact/distance/point_plane.hpp"
+#include "massspring/contact/fosssim/polynomial_intervals.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {

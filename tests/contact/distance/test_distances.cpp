@@ -1,11 +1,11 @@
-// contact/point_point.hpp, point_segment.hpp, point_plane.hpp: closest points, normals and
+// contact/distance/point_point.hpp, point_segment.hpp, point_plane.hpp: closest points, normals and
 // distances against closed forms, in 3D and in the plane z = 0.
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <massspring/contact/point_plane.hpp>
-#include <massspring/contact/point_point.hpp>
-#include <massspring/contact/point_segment.hpp>
+#include <massspring/contact/distance/point_plane.hpp>
+#include <massspring/contact/distance/point_point.hpp>
+#include <massspring/contact/distance/point_segment.hpp>
 
 #include "contact/support.hpp"
 

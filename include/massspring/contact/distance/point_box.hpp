@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief Signed distance from a point to an axis-aligned box centred at the origin, with the
-/// outward normal: the box collider's distance, in its local frame (contact/collider.hpp).
+/// outward normal: the box collider's distance, in its local frame (contact/colliders/collider.hpp).
 
 #include <Eigen/Core>
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "massspring/contact/point_plane.hpp"
+#include "massspring/contact/distance/point_plane.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/types.hpp"

@@ -7,9 +7,9 @@
 #include <string>
 #include <utility>
 
-#include "massspring/contact/broad_phase.hpp"
+#include "massspring/contact/fosssim/broad_phase.hpp"
 #include "massspring/contact/collision_handler.hpp"
-#include "massspring/contact/geometry.hpp"
+#include "massspring/contact/fosssim/geometry.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 

@@ -1,4 +1,4 @@
-// contact/impact_zones.hpp and contact/hybrid.hpp: a rigid zone keeps its shape and its linear
+// contact/response/impact_zones.hpp and contact/fosssim/hybrid.hpp: a rigid zone keeps its shape and its linear
 // momentum and turns by the course's angle L_z / I_zz in the plane; a zone with a fixed particle
 // or a plane stays where it started, at rest; two equal particles colliding head-on with no
 // impulse rounds (maxiters = 0) end as one body (velocities averaged), with enough rounds and
@@ -7,7 +7,7 @@
 
 #include <array>
 #include <cmath>
-#include <massspring/contact/hybrid.hpp>
+#include <massspring/contact/fosssim/hybrid.hpp>
 #include <random>
 
 #include "contact/support.hpp"

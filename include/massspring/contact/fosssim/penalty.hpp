@@ -3,8 +3,8 @@
 /// @brief PenaltyForce: the course's penalty response (FOSSSim, Theme 2, PenaltyForce), a force
 /// term like any other, so every integrator uses it.
 ///
-/// For each candidate pair (contact/broad_phase.hpp) with n the shortest vector from the particle
-/// to the other primitive (contact/point_point.hpp, point_segment.hpp, point_plane.hpp) and
+/// For each candidate pair (contact/fosssim/broad_phase.hpp) with n the shortest vector from the particle
+/// to the other primitive (contact/distance/point_point.hpp, point_segment.hpp, point_plane.hpp) and
 /// s = r_1 + r_2 + thickness (particle-particle), r + r_e + thickness (particle-edge),
 /// r + thickness (particle-plane): when \f$ 0 < |n| < s \f$ (the course skips |n| < 1e-10),
 /// \f[ E = \frac{k}{2} (s - |n|)^2, \qquad F_1 = k (|n| - s)\,\hat n \f]
@@ -22,10 +22,10 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/broad_phase.hpp"
-#include "massspring/contact/geometry.hpp"
-#include "massspring/contact/point_plane.hpp"
-#include "massspring/contact/point_segment.hpp"
+#include "massspring/contact/fosssim/broad_phase.hpp"
+#include "massspring/contact/fosssim/geometry.hpp"
+#include "massspring/contact/distance/point_plane.hpp"
+#include "massspring/contact/distance/point_segment.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"

@@ -1,4 +1,4 @@
-// contact/simple_impulse.hpp and contact/impulse.hpp, against closed forms and invariants:
+// contact/fosssim/simple_impulse.hpp and contact/fosssim/impulse.hpp, against closed forms and invariants:
 // a head-on collision of equal masses with COR e exchanges the velocities scaled by e; a fixed
 // particle has infinite mass; a particle dropped on a half-plane rebounds to e^2 of its height;
 // particle-edge impulses conserve linear momentum and, for a free edge, angular momentum;
@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <massspring/contact/simple_impulse.hpp>
+#include <massspring/contact/fosssim/simple_impulse.hpp>
 #include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/symplectic_euler.hpp>
 #include <massspring/system/mass_spring_system.hpp>

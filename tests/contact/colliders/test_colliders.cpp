@@ -1,4 +1,4 @@
-// contact/collider.hpp, triangle_mesh.hpp, point_triangle.hpp (issue 22, item 1): the geometry
+// contact/colliders/collider.hpp, triangle_mesh.hpp, point_triangle.hpp (issue 22, item 1): the geometry
 // of the colliders against independent oracles. Signed distance and outward normal of the plane,
 // sphere, capsule and box against their closed forms (inside and outside, a rotated box, a moved
 // pose, the pose a velocity and an angular velocity give after a step, and the surface velocity
@@ -12,8 +12,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <massspring/contact/collider.hpp>
-#include <massspring/contact/triangle_mesh.hpp>
+#include <massspring/contact/colliders/collider.hpp>
+#include <massspring/contact/colliders/triangle_mesh.hpp>
 #include <massspring/error.hpp>
 #include <random>
 #include <string>

@@ -1,9 +1,9 @@
-// contact/penalty.hpp: the force is minus the gradient of the energy (central differences) for
+// contact/fosssim/penalty.hpp: the force is minus the gradient of the energy (central differences) for
 // particle-particle, particle-edge and particle-plane contacts; closed form of one overlap;
 // internal forces sum to zero; the grid broad phase gives the same force as all pairs.
 #include <doctest/doctest.h>
 
-#include <massspring/contact/penalty.hpp>
+#include <massspring/contact/fosssim/penalty.hpp>
 #include <random>
 
 #include "contact/support.hpp"

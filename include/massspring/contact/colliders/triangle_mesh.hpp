@@ -15,7 +15,7 @@
 #include <numeric>
 #include <vector>
 
-#include "massspring/contact/point_triangle.hpp"
+#include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/types.hpp"

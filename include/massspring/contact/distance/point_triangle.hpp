@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief The point of a triangle closest to a point, and the first crossing of a segment with a
-/// triangle: the two queries a triangle-mesh collider makes (contact/triangle_mesh.hpp).
+/// triangle: the two queries a triangle-mesh collider makes (contact/colliders/triangle_mesh.hpp).
 ///
 /// Closest point: Ericson, "Real-Time Collision Detection" (2005), section 5.1.5 (the Voronoi
 /// regions of the vertices, edges and face, tested in that order). Crossing: Moller and Trumbore,

@@ -3,7 +3,7 @@
 /// @brief ContinuousTimeCollisionHandler: the course's "continuous-time" response (FOSSSim,
 /// Theme 2, ContinuousTimeCollisionHandler): each pair that overlaps and approaches at some time
 /// of the step, assuming straight-line motion from the start-of-step positions qs to the
-/// end-of-step positions qe (contact/time_of_impact.hpp), gets an impulse computed from the
+/// end-of-step positions qe (contact/fosssim/time_of_impact.hpp), gets an impulse computed from the
 /// step's mean velocities u = (qe - qs) / dt, applied to the end-of-step velocities and, times
 /// dt, to the end-of-step positions (as if it had acted at the start of the step). Pairs are
 /// handled one after the other in the broad phase's order; each sees the positions the previous
@@ -11,9 +11,9 @@
 
 #include <algorithm>
 
-#include "massspring/contact/detail/impulse_handler.hpp"
-#include "massspring/contact/impulse.hpp"
-#include "massspring/contact/time_of_impact.hpp"
+#include "massspring/contact/fosssim/detail/impulse_handler.hpp"
+#include "massspring/contact/fosssim/impulse.hpp"
+#include "massspring/contact/fosssim/time_of_impact.hpp"
 
 namespace massspring::contact {
 

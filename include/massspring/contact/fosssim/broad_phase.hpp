@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/geometry.hpp"
+#include "massspring/contact/fosssim/geometry.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
