@@ -14,6 +14,9 @@ using Points = Eigen::Matrix<Scalar, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// @brief #springs by 2 list of point indices (0-based); row e is spring e = (i, j).
 using Edges = Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>;
 
+/// @brief #triangles by 3 list of point indices (0-based); row t is triangle t = (a, b, c).
+using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 /// @brief Column vector of per-point or per-spring values.
 template <class Scalar>
 using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;

@@ -8,12 +8,15 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "massspring/contact/colliders/colliders.hpp"
 #include "massspring/contact/collision_handler.hpp"
+#include "massspring/contact/self_collision.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
@@ -298,9 +301,71 @@ class MassSpringSystem {
   /// @brief The obstacles: move one, or change its material, between steps.
   [[nodiscard]] contact::ColliderSet<Scalar>& colliders() { return colliders_; }
   [[nodiscard]] const contact::ColliderSet<Scalar>& colliders() const { return colliders_; }
-  /// @brief True when a step has a collision response to apply (a handler or a collider).
+  /// @brief True when a step has a collision response to apply (a handler, a collider, or
+  /// self-collision).
   [[nodiscard]] bool has_collision_response() const {
-    return collision_handler_.get() != nullptr || !colliders_.empty();
+    return collision_handler_.get() != nullptr || !colliders_.empty() || self_collision_;
+  }
+
+  // ---- the surface (contact/response/surface_contact.hpp) ------------------------------------
+
+  /// @brief Sets the cloth's surface: #triangles by 3 point indices (0-based). Its triangles and
+  /// their edges are what self-collision and the obstacles' edges test; springs stay the
+  /// mechanics and may differ from its edges. An empty matrix removes it. Not a model change: no
+  /// new revision.
+  /// @throws Error naming the triangle for an index out of range, a point repeated in a
+  /// triangle, or a triangle of zero area at the rest positions; nothing is changed then.
+  void set_surface(const Triangles& triangles) {
+    const int n = num_points();
+    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+      const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+      const auto name = [&] {
+        return detail::message("surface triangle ", t, " = (", a, ", ", b, ", ", c, ")");
+      };
+      for (const int p : {a, b, c})
+        if (p < 0 || p >= n)
+          throw Error(detail::message(name(), ": point index ", p, " out of range [0, ", n, ")"));
+      if (a == b || b == c || a == c) throw Error(detail::message(name(), ": repeats a point"));
+      const Vector3Type u = (rest_positions_.row(b) - rest_positions_.row(a)).transpose();
+      const Vector3Type w = (rest_positions_.row(c) - rest_positions_.row(a)).transpose();
+      // Zero area relative to the longest side: collinear corners (or coincident ones).
+      const Scalar longest = std::max({u.squaredNorm(), w.squaredNorm(), (w - u).squaredNorm()});
+      if (!(u.cross(w).norm() > Scalar(64) * std::numeric_limits<Scalar>::epsilon() * longest))
+        throw Error(detail::message(name(), ": zero area at the rest positions"));
+    }
+    std::vector<std::pair<int, int>> edges;
+    edges.reserve(3 * std::size_t(triangles.rows()));
+    for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int i = triangles(t, k), j = triangles(t, (k + 1) % 3);
+        edges.emplace_back(std::min(i, j), std::max(i, j));
+      }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    surface_edges_.resize(Eigen::Index(edges.size()), 2);
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      surface_edges_.row(Eigen::Index(e)) << edges[e].first, edges[e].second;
+    surface_ = triangles;
+  }
+  /// @brief The surface's triangles (#triangles by 3, 0-based; empty when none was set).
+  [[nodiscard]] const Triangles& surface() const { return surface_; }
+  /// @brief The surface's edges: each side of a triangle once, (i, j) with i < j, ascending.
+  [[nodiscard]] const Edges& surface_edges() const { return surface_edges_; }
+
+  /// @brief Turns self-collision on with these parameters (contact/self_collision.hpp); it acts
+  /// on the surface, so set_surface() must have given one. Not a model change.
+  /// @throws Error for a parameter out of range, or when the system has no surface.
+  void set_self_collision(const contact::SelfCollision<Scalar>& parameters) {
+    parameters.validate();
+    if (surface_.rows() == 0)
+      throw Error("self-collision: the system has no surface (set_surface(), or a scene's faces)");
+    self_collision_ = parameters;
+  }
+  /// @brief Turns self-collision off (the default).
+  void clear_self_collision() { self_collision_.reset(); }
+  /// @brief The self-collision parameters, or nothing when it is off.
+  [[nodiscard]] const std::optional<contact::SelfCollision<Scalar>>& self_collision() const {
+    return self_collision_;
   }
 
   /// @brief Identifies the model Q is built from: it changes, to a value no system had before,
@@ -421,6 +486,9 @@ class MassSpringSystem {
   ForceSet<Scalar> forces_;
   contact::CollisionHandlerSlot<Scalar> collision_handler_;
   contact::ColliderSet<Scalar> colliders_;
+  Triangles surface_ = Triangles(0, 3);
+  Edges surface_edges_ = Edges(0, 2);
+  std::optional<contact::SelfCollision<Scalar>> self_collision_;
   bool damped_ = false;
   PointsType pin_targets_ = PointsType(0, 3);
   PointsType positions_ = PointsType(0, 3);

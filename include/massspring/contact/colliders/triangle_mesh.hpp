@@ -23,7 +23,7 @@
 namespace massspring::contact {
 
 /// @brief #triangles by 3 vertex indices (0-based), row by row.
-using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Triangles = massspring::Triangles;
 
 /// @brief A static triangle mesh and its bounding-volume hierarchy, in its own (local) frame.
 template <class Scalar>
