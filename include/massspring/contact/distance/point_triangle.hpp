@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// @brief The point of a triangle closest to a point, and the first crossing of a segment with a
-/// triangle: the two queries a triangle-mesh collider makes (contact/colliders/triangle_mesh.hpp).
+/// triangle: the two queries a triangle-mesh collider makes (contact/colliders/triangle_mesh.hpp);
+/// and the squared point-triangle distance the continuous collision detection uses.
 ///
 /// Closest point: Ericson, "Real-Time Collision Detection" (2005), section 5.1.5 (the Voronoi
 /// regions of the vertices, edges and face, tested in that order). Crossing: Moller and Trumbore,
@@ -12,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "massspring/contact/distance/point_segment.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
@@ -58,6 +60,25 @@ Vector3<Scalar> closest_point_on_triangle(const Vector3<Scalar>& p, const Vector
   }
   const Scalar v = vb / sum, w = vc / sum;
   return a + v * ab + w * ac;  // face region
+}
+
+/// @brief Squared distance from p to triangle (a, b, c) (all [m], result [m^2]): the smaller of
+/// |p - closest_point_on_triangle(p, a, b, c)|^2 and the squared distances to the three edges.
+/// The edges bound the error of the face region's barycentric division on a sliver (a triangle
+/// whose area is small against its edges squared) by the sliver's width. Used by the continuous
+/// collision detection (contact/ccd/additive_ccd.hpp), which needs the distance never above the
+/// true one by more than rounding.
+template <class Scalar>
+Scalar point_triangle_squared_distance(const Vector3<Scalar>& p, const Vector3<Scalar>& a,
+                                       const Vector3<Scalar>& b, const Vector3<Scalar>& c) {
+  Scalar best = (p - closest_point_on_triangle(p, a, b, c)).squaredNorm();
+  const Vector3<Scalar>* ends[3][2] = {{&a, &b}, {&b, &c}, {&c, &a}};
+  for (const auto& e : ends) {
+    const Scalar t = segment_parameter(p, *e[0], *e[1]);
+    const Scalar q = (p - (*e[0] + t * (*e[1] - *e[0]))).squaredNorm();
+    if (q < best) best = q;
+  }
+  return best;
 }
 
 /// @brief Where the segment p0 -> p1 crosses triangle (a, b, c), as the parameter t in [0, 1]
