@@ -8,7 +8,8 @@
 /// on) and skip-one bending springs, k = 1000 N/m, nothing pinned, at rest; Coulomb friction 0.3
 /// on every collider. Masses are the lumped Voronoi areas at 1 kg/m^2 unless a scene says
 /// otherwise. Every point starts at least 5 cm from every obstacle, and no two parts of a cloth
-/// touch.
+/// touch. Self-collision is not part of the description: a program turns it on for the system it
+/// builds (MassSpringSystem::set_surface() with the faces, then set_self_collision()).
 
 #include <Eigen/Core>
 #include <cmath>
