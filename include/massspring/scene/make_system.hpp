@@ -43,9 +43,9 @@ void set_face_surface(System& system, const std::vector<std::vector<int>>& faces
     system.set_surface(triangles);
   } catch (const Error& e) {
     // Find the triangle it refused (set_surface checks them in order), to name its face.
+    System probe = system;
     for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
       try {
-        System probe = system;
         probe.set_surface(Triangles(triangles.row(t)));
       } catch (const Error&) {
         const std::vector<int>& face = faces[face_of[std::size_t(t)]];
