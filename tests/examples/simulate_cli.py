@@ -83,7 +83,7 @@ def prepare(source, work):
 
 
 FLOAT_OPTIONS = ["--dt", "--shrink", "--tolerance", "--penalty-weight", "--chebyshev-rho",
-                 "--chebyshev-gamma", "--newton-tolerance", "--guard-growth"]
+                 "--chebyshev-gamma", "--newton-tolerance", "--guard-growth", "--self-collision"]
 
 # (arguments, expected stderr after the prefix); every one exits 1 with nothing written.
 REFUSALS = [
@@ -157,6 +157,13 @@ REFUSALS = [
      "FastMassSpring: options.ordering = NestedDissection: this storage's Cholesky takes no "
      "given elimination order (use Sparse storage)"),
     (["chain.json", "--bogus"], "The following argument was not expected: --bogus (see --help)"),
+    (["chain.json", "--self-collision", "0.005"],
+     "--self-collision: chain.json has no surface to collide (no polygons: chains, nets and XML "
+     "scenes have none)"),
+    (["--generate", "net", "--self-collision", "0.005"],
+     "--self-collision: --generate net has no surface to collide (no polygons: chains, nets and "
+     "XML scenes have none)"),
+    (["chain.json", "--self-collision", "0"], "--self-collision: must be > 0, got 0"),
     (["chain.json", "--integrator", "rk5"],
      "--integrator: rk5 not in {forward-euler,symplectic-euler,backward-euler,"
      "linearized-backward-euler,fast-mass-spring} (see --help)"),
@@ -220,7 +227,7 @@ def help_text(simulate, work):
     for name in ("--acceleration", "--chebyshev-rho", "--chebyshev-gamma", "--chebyshev-delay",
                  "--anderson-window", "--threads", "--ordering", "--newton-iterations",
                  "--newton-tolerance", "--line-search", "--save-state", "--save-every",
-                 "--overwrite"):
+                 "--overwrite", "--self-collision"):
         check(name in result.stdout, f"--help does not list {name}")
     print(f"OK: --help exits 0, {options} options each with a default")
 
