@@ -20,10 +20,12 @@ CASE is one of
              backward Euler's options run, the header names what runs
   resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
              frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink; a scene with
-             moving colliders of every kind, with every integrator)
+             moving colliders of every kind, with every integrator; --self-collision, whose
+             surface and thickness the state holds)
 Only the standard library."""
 
 import hashlib
+import json
 import os
 import shutil
 import signal
@@ -409,6 +411,8 @@ def resume(simulate, source, work):
         (["contact.json"], ["--integrator", "forward-euler", "--dt", "0.0005"]),
         (["contact.json"], ["--integrator", "backward-euler"]),
         (["contact.json"], ["--integrator", "linearized-backward-euler"]),
+        # self-collision: the state holds the surface and the thickness
+        (["--generate", "cloth:8x6"], ["--self-collision", "0.01"]),
     ]
     for k, (scene, options) in enumerate(cases):
         whole, first, second, state = (f"r{k}_20.csv", f"r{k}_a.csv", f"r{k}_b.csv",
@@ -421,6 +425,12 @@ def resume(simulate, source, work):
                         [state, "--frames", "10", "--csv", second] + again):
             result = run(simulate, command, work)
             check(result.returncode == 0, f"{command}: exit {result.returncode} {result.stderr}")
+        if "--self-collision" in options:
+            with open(os.path.join(work, state)) as handle:
+                saved = json.load(handle)
+            check(saved.get("self_collision") == {"thickness": 0.01, "friction": 0.2} and
+                  len(saved.get("surface", [])) == 2 * 7 * 5,
+                  f"{args}: the state does not hold the surface and self-collision")
         a, b, c = (rows(os.path.join(work, f)) for f in (whole, first, second))
         check(b[0] == c[0] == a[0], "CSV headers")
         # the saved frame 10 is in both halves, equal; together they are the 20 frames exactly
