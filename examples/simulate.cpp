@@ -10,6 +10,8 @@
 //        options say otherwise)
 //   massspring-simulate flag.json --frames 10 --save-state s.json
 //   massspring-simulate s.json --frames 10       (continues bit for bit: frames 11..20)
+//   massspring-simulate examples/scenes/drape.json --self-collision 0.005
+//       (self-collision of the cloth's surface, 5 mm thick; needs a scene with polygons)
 //
 // Exit status (docs/errors.md): 0 on success; 1 for invalid input or options, or an output that
 // cannot be written (refused before the first step whenever it can be known then); 2 when a step
@@ -118,7 +120,7 @@ int main(int argc, char** argv) {
   std::string frames = "300", dt = "0.0333333", shrink = "0", iterations = "50", tolerance = "0",
               penalty_weight = "1e10", every = "1", guard_growth = "100", rho = "0", gamma = "1",
               delay = "2", estimate = "100", window = "5", threads = "1", newton_iterations = "20",
-              newton_tolerance = "1e-10", save_every = "0";
+              newton_tolerance = "1e-10", save_every = "0", self_collision;
   std::vector<std::string> force{"0", "0", "0"}, gravity{"0", "-9.8", "0"};
 
   CLI::App app{
@@ -228,6 +230,12 @@ int main(int argc, char** argv) {
                                 "Acceleration of every point [m/s^2], GX,GY,GZ, added as a "
                                 "Gravity term (not for XML scenes or saved states: they carry "
                                 "their own)");
+  auto* o_self_collision =
+      app.add_option("--self-collision", self_collision,
+                     "Self-collision of the surface (the scene's polygons) with this thickness "
+                     "[m], > 0, and friction 0.2; refused for a scene without polygons (default: "
+                     "the scene's \"self_collision\", else off)")
+          ->default_str("none");
   app.add_option("--storage", c.storage, "Matrix storage: sparse or dense")
       ->check(CLI::IsMember({"sparse", "dense"}))
       ->capture_default_str();
@@ -271,7 +279,8 @@ int main(int argc, char** argv) {
                                                   "--chebyshev-rho",
                                                   "--chebyshev-gamma",
                                                   "--newton-tolerance",
-                                                  "--guard-growth"};
+                                                  "--guard-growth",
+                                                  "--self-collision"};
     const std::string name = o->get_name();
     if (std::find(whole.begin(), whole.end(), name) != whole.end()) o->type_name("INT");
     if (std::find(real.begin(), real.end(), name) != real.end()) o->type_name("NUMBER");
@@ -323,6 +332,8 @@ int main(int argc, char** argv) {
     c.guard_growth = parse_number("--guard-growth", guard_growth, Bound::NonNegative);
     c.force = simulate::parse_vector3("--force", force);
     c.gravity = simulate::parse_vector3("--gravity", gravity);
+    if (o_self_collision->count() > 0)
+      c.self_collision = parse_number("--self-collision", self_collision, Bound::Positive);
     if (c.scene.empty() == c.generate.empty())
       throw Error("give either a scene file or --generate (see --help)");
     if (c.save_every > 0 && c.save_state.empty())

@@ -15,7 +15,7 @@ using Scene = SceneDescription<double>;
 void bind_scenes(py::module_& m) {
   py::class_<Scene>(m, "SceneDescription",
                     "A scene before it is a system: vertices [m], faces, edges, pinned points, "
-                    "stiffness [N/m], mass [kg] (None: Voronoi areas), colliders.")
+                    "stiffness [N/m], mass [kg] (None: Voronoi areas), colliders, self-collision.")
       .def(py::init<>())
       .def_property(
           "vertices", [](const Scene& s) { return copy_array(s.vertices); },
@@ -29,6 +29,9 @@ void bind_scenes(py::module_& m) {
       .def_readwrite("pinned", &Scene::pinned, "Pinned points, 0-based.")
       .def_readwrite("stiffness", &Scene::stiffness, "Every spring's stiffness [N/m].")
       .def_readwrite("mass", &Scene::mass, "Every point's mass [kg], or None: Voronoi masses.")
+      .def_readwrite("self_collision", &Scene::self_collision,
+                     "A SelfCollision, or None (off); make_system applies it, after giving the "
+                     "system its surface (the faces split into fans).")
       .def_property_readonly(
           "num_colliders", [](const Scene& s) { return int(s.colliders.size()); },
           "Colliders the scene describes (made by make_system).");

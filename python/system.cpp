@@ -2,6 +2,7 @@
 // `x()` is the property `x`; a C++ setter `set_x(v)` is both the method and the assignment
 // `x = v`. Positions and velocities read as views (no copy); the rest read as copies.
 
+#include <algorithm>
 #include <vector>
 
 #include "bindings.hpp"
@@ -23,6 +24,19 @@ void set_positions(System& s, const py::handle& x) {
 }
 void set_velocities(System& s, const py::handle& v) {
   idle(s, "set_velocities").set_velocities(real_matrix(v, "velocities", 3));
+}
+
+// A new (k, 3) int32 numpy array holding a copy of `triangles` (row-major, as numpy's).
+py::array_t<int> copy_triangles(const Triangles& triangles) {
+  py::array_t<int> out({triangles.rows(), Eigen::Index(3)});
+  std::copy(triangles.data(), triangles.data() + triangles.size(), out.mutable_data());
+  return out;
+}
+
+// sys.set_surface(triangles): an (n, 3) integer array; the library names a bad triangle.
+void set_surface(System& s, const py::handle& t) {
+  const IndexMatrix triangles = index_matrix(t, "surface", 3);
+  idle(s, "set_surface").set_surface(Triangles(triangles));
 }
 
 }  // namespace
@@ -186,6 +200,64 @@ Invalid input raises massspring.Error and builds nothing.)doc");
   c.def_property_readonly("has_spring_damping", &System::has_spring_damping);
   c.def_property_readonly("revision", &System::revision,
                           "Changes whenever masses, stiffness, springs, pins or forces change.");
+  // the surface and self-collision (contact/self_collision.hpp)
+  using SelfCollision = contact::SelfCollision<double>;
+  py::class_<SelfCollision>(m, "SelfCollision", R"doc(
+Self-collision parameters (contact/self_collision.hpp).
+
+SelfCollision(thickness=0.004, friction=0.2)
+  thickness  the distance at which layers of the surface repel [m], > 0
+  friction   Coulomb's coefficient between layers, >= 0
+Out-of-range values raise massspring.Error.)doc")
+      .def(py::init([](double thickness, double friction) {
+             SelfCollision p;
+             p.thickness = thickness;
+             p.friction = friction;
+             p.validate();
+             return p;
+           }),
+           py::arg("thickness") = SelfCollision{}.thickness,
+           py::arg("friction") = SelfCollision{}.friction)
+      .def_readonly("thickness", &SelfCollision::thickness, "[m]")
+      .def_readonly("friction", &SelfCollision::friction, "Coulomb's coefficient")
+      .def("__eq__",
+           [](const SelfCollision& a, const SelfCollision& b) {
+             return a.thickness == b.thickness && a.friction == b.friction;
+           })
+      .def("__repr__", [](const SelfCollision& p) {
+        return detail::message("SelfCollision(thickness=", p.thickness, ", friction=", p.friction,
+                               ")");
+      });
+  c.def("set_surface", &set_surface, py::arg("triangles"),
+        "Sets the surface: an (n, 3) integer array of point indices, 0-based (an empty array "
+        "removes it). A triangle out of range, with a repeated point or of zero area raises "
+        "massspring.Error naming it; nothing changes then.");
+  c.def_property_readonly(
+      "surface", [](const System& s) { return copy_triangles(s.surface()); },
+      "(k, 3) surface triangles, 0-based (a copy; empty when none was set).");
+  c.def_property_readonly(
+      "surface_edges", [](const System& s) { return copy_edges(s.surface_edges()); },
+      "(e, 2) the surface's edges, each once as (i, j) with i < j, ascending (a copy).");
+  c.def(
+      "set_self_collision",
+      [](System& s, double thickness, double friction) {
+        SelfCollision p;
+        p.thickness = thickness;
+        p.friction = friction;
+        idle(s, "set_self_collision").set_self_collision(p);
+      },
+      py::arg("thickness") = SelfCollision{}.thickness,
+      py::arg("friction") = SelfCollision{}.friction,
+      "Turns self-collision of the surface on: thickness [m] > 0, friction >= 0. Needs a "
+      "surface (set_surface, or a scene's faces); raises massspring.Error otherwise.");
+  c.def(
+      "clear_self_collision",
+      [](System& s) { idle(s, "clear_self_collision").clear_self_collision(); },
+      "Turns self-collision off.");
+  c.def_property_readonly(
+      "self_collision", [](const System& s) { return s.self_collision(); },
+      "The SelfCollision parameters, or None when it is off.");
+
   // copies: the model, the state, the force terms, the colliders (not shared with the original)
   c.def(
       "copy",
@@ -209,7 +281,11 @@ Invalid input raises massspring.Error and builds nothing.)doc");
   c.def("__repr__", [](const System& s) {
     return detail::message("MassSpringSystem(", s.num_points(), " points, ", s.num_springs(),
                            " springs, ", s.num_pinned(), " pinned, ", s.forces().size(),
-                           " force terms, ", s.colliders().size(), " colliders)");
+                           " force terms, ", s.colliders().size(), " colliders",
+                           s.surface().rows()
+                               ? detail::message(", ", s.surface().rows(), " surface triangles")
+                               : std::string(),
+                           s.self_collision() ? ", self-collision" : "", ")");
   });
 }
 

@@ -88,6 +88,8 @@ struct Config {
   int every = 1;
   bool quiet = false;
   double guard_growth = 100;  // DivergenceGuard growth; 0: no energy check
+  // --self-collision: the thickness [m] (> 0), with the default friction; unset: the scene's own
+  std::optional<double> self_collision;
 };
 
 // What a run needs besides the options.
@@ -441,6 +443,21 @@ template <class System>
 int run(const Config& c, Setup<System>& s) {
   using Scalar = typename System::Scalar;
   const Plan p = resolve(c, s);
+  // --self-collision replaces the scene's own "self_collision" (kept when it is absent); it acts
+  // on the surface, so a scene without polygons is refused before anything is written.
+  if (c.self_collision) {
+    if (s.system.surface().rows() == 0)
+      throw Error("--self-collision: " + s.name +
+                  " has no surface to collide (no polygons: chains, nets and XML scenes have "
+                  "none)");
+    massspring::contact::SelfCollision<Scalar> parameters;
+    parameters.thickness = Scalar(*c.self_collision);
+    try {
+      s.system.set_self_collision(parameters);
+    } catch (const Error& e) {
+      throw Error(std::string("--self-collision: ") + e.what());
+    }
+  }
 
   // Outputs: checked before anything is written or a step is taken.
   check_output_file("--csv", c.csv, s.inputs, {c.save_state}, c.overwrite);

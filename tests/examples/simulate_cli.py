@@ -20,10 +20,12 @@ CASE is one of
              backward Euler's options run, the header names what runs
   resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
              frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink; a scene with
-             moving colliders of every kind, with every integrator)
+             moving colliders of every kind, with every integrator; --self-collision, whose
+             surface and thickness the state holds)
 Only the standard library."""
 
 import hashlib
+import json
 import os
 import shutil
 import signal
@@ -83,7 +85,7 @@ def prepare(source, work):
 
 
 FLOAT_OPTIONS = ["--dt", "--shrink", "--tolerance", "--penalty-weight", "--chebyshev-rho",
-                 "--chebyshev-gamma", "--newton-tolerance", "--guard-growth"]
+                 "--chebyshev-gamma", "--newton-tolerance", "--guard-growth", "--self-collision"]
 
 # (arguments, expected stderr after the prefix); every one exits 1 with nothing written.
 REFUSALS = [
@@ -157,6 +159,13 @@ REFUSALS = [
      "FastMassSpring: options.ordering = NestedDissection: this storage's Cholesky takes no "
      "given elimination order (use Sparse storage)"),
     (["chain.json", "--bogus"], "The following argument was not expected: --bogus (see --help)"),
+    (["chain.json", "--self-collision", "0.005"],
+     "--self-collision: chain.json has no surface to collide (no polygons: chains, nets and XML "
+     "scenes have none)"),
+    (["--generate", "net", "--self-collision", "0.005"],
+     "--self-collision: --generate net has no surface to collide (no polygons: chains, nets and "
+     "XML scenes have none)"),
+    (["chain.json", "--self-collision", "0"], "--self-collision: must be > 0, got 0"),
     (["chain.json", "--integrator", "rk5"],
      "--integrator: rk5 not in {forward-euler,symplectic-euler,backward-euler,"
      "linearized-backward-euler,fast-mass-spring} (see --help)"),
@@ -220,7 +229,7 @@ def help_text(simulate, work):
     for name in ("--acceleration", "--chebyshev-rho", "--chebyshev-gamma", "--chebyshev-delay",
                  "--anderson-window", "--threads", "--ordering", "--newton-iterations",
                  "--newton-tolerance", "--line-search", "--save-state", "--save-every",
-                 "--overwrite"):
+                 "--overwrite", "--self-collision"):
         check(name in result.stdout, f"--help does not list {name}")
     print(f"OK: --help exits 0, {options} options each with a default")
 
@@ -402,6 +411,8 @@ def resume(simulate, source, work):
         (["contact.json"], ["--integrator", "forward-euler", "--dt", "0.0005"]),
         (["contact.json"], ["--integrator", "backward-euler"]),
         (["contact.json"], ["--integrator", "linearized-backward-euler"]),
+        # self-collision: the state holds the surface and the thickness
+        (["--generate", "cloth:8x6"], ["--self-collision", "0.01"]),
     ]
     for k, (scene, options) in enumerate(cases):
         whole, first, second, state = (f"r{k}_20.csv", f"r{k}_a.csv", f"r{k}_b.csv",
@@ -414,6 +425,12 @@ def resume(simulate, source, work):
                         [state, "--frames", "10", "--csv", second] + again):
             result = run(simulate, command, work)
             check(result.returncode == 0, f"{command}: exit {result.returncode} {result.stderr}")
+        if "--self-collision" in options:
+            with open(os.path.join(work, state)) as handle:
+                saved = json.load(handle)
+            check(saved.get("self_collision") == {"thickness": 0.01, "friction": 0.2} and
+                  len(saved.get("surface", [])) == 2 * 7 * 5,
+                  f"{args}: the state does not hold the surface and self-collision")
         a, b, c = (rows(os.path.join(work, f)) for f in (whole, first, second))
         check(b[0] == c[0] == a[0], "CSV headers")
         # the saved frame 10 is in both halves, equal; together they are the 20 frames exactly

@@ -156,7 +156,8 @@ TEST_CASE("J4 missing required key") {
 TEST_CASE("J5 unknown, repeated or unsupported key") {
   const JsonScene unknown(R"({"obj": "tri.obj", "b": [1], "k": 10, "wind": 1})");
   CHECK(unknown.error() ==
-        unknown.name() + ": unknown key \"wind\" (expected obj, b, k, m, png, colliders)");
+        unknown.name() +
+            ": unknown key \"wind\" (expected obj, b, k, m, png, colliders, self_collision)");
   const JsonScene twice(R"({"obj": "tri.obj", "b": [1], "k": 10, "k": 20})");
   CHECK(twice.error() == twice.name() + ": key \"k\" appears twice");
   const JsonScene bc(R"({"obj": "tri.obj", "b": [1], "k": 10, "bc": [[0, 0, 0]]})");
@@ -366,6 +367,42 @@ TEST_CASE("J21 a mesh collider's OBJ missing, not polygons, or degenerate") {
     const fs::path m = s.dir.write("m.obj", obj);
     CHECK(s.error() == s.name() + ": colliders[0] (mesh): \"obj\": " + m.string() + message);
   }
+}
+
+TEST_CASE("J22 self_collision not an object, an unknown, repeated or bad field") {
+  const std::string head = R"({"obj": "tri.obj", "b": [], "k": 10, "self_collision": )";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"true", R"(key "self_collision": expected an object {"thickness": T, "friction": MU}, )"
+               R"(got boolean true)"},
+      {R"({"stiffness": 1})",
+       R"(key "self_collision": unknown key "stiffness" (expected thickness, friction))"},
+      {R"({"thickness": 0})",
+       R"(key "self_collision": "thickness": expected a finite number > 0, got 0)"},
+      {R"({"friction": -0.2})",
+       R"(key "self_collision": "friction": expected a finite number >= 0, got -0.2)"},
+      {R"({"thickness": "4mm"})",
+       R"(key "self_collision": "thickness": expected a number > 0, got string "4mm")"},
+      {R"({"thickness": 0.1, "thickness": 0.2})",
+       R"(key "self_collision": key "thickness" appears twice)"}};
+  for (const auto& [value, message] : cases) {
+    CAPTURE(value);
+    const JsonScene s(head + value + "}");
+    CHECK(s.error() == s.name() + ": " + message);
+  }
+}
+
+TEST_CASE("J23 a surface make_system cannot build") {
+  const JsonScene flat(R"({"obj": "tri.obj", "b": [], "k": 10, "m": 1})",
+                       "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3 4\n");
+  CHECK(
+      flat.error() ==
+      flat.name() +
+          ": face 0 (0, 1, 2, 3): surface triangle 0 = (0, 1, 2): zero area at the rest positions");
+  const JsonScene chain(R"({"obj": "tri.obj", "b": [], "k": 10, "m": 1, "self_collision": {}})",
+                        "v 0 0 0\nv 1 0 0\nf 1 2\n");
+  CHECK(chain.error() == chain.name() +
+                             ": self_collision: the scene has no faces, so no surface to collide "
+                             "(chains and nets have none)");
 }
 
 // ---- O: OBJ files (read_obj), messages "<file>:<line>: ..." ---------------------------------

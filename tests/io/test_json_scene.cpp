@@ -40,6 +40,11 @@ void check_same(const SceneDescription<Scalar>& a, const SceneDescription<Scalar
   CHECK(a.stiffness == b.stiffness);
   CHECK(a.mass.has_value() == b.mass.has_value());
   if (a.mass && b.mass) CHECK(*a.mass == *b.mass);
+  REQUIRE(a.self_collision.has_value() == b.self_collision.has_value());
+  if (a.self_collision) {
+    CHECK(a.self_collision->thickness == b.self_collision->thickness);
+    CHECK(a.self_collision->friction == b.self_collision->friction);
+  }
 }
 
 template <class Scalar>
@@ -51,6 +56,9 @@ SceneDescription<Scalar> cast(const SceneDescription<double>& s) {
   r.pinned = s.pinned;
   r.stiffness = Scalar(s.stiffness);
   if (s.mass) r.mass = Scalar(*s.mass);
+  if (s.self_collision)
+    r.self_collision = massspring::contact::SelfCollision<Scalar>{
+        Scalar(s.self_collision->thickness), Scalar(s.self_collision->friction)};
   return r;
 }
 
@@ -144,7 +152,7 @@ TEST_CASE("read_json_scene refuses bad scenes, naming the file and the key") {
       {R"({"obj": "tri.obj", "b": [1], "k": 1, "bc": [[0,0,0]]})",
        "key \"bc\" (pinned positions) is not supported"},
       {R"({"obj": "tri.obj", "b": [1], "k": 1, "wind": true})",
-       "unknown key \"wind\" (expected obj, b, k, m, png, colliders)"},
+       "unknown key \"wind\" (expected obj, b, k, m, png, colliders, self_collision)"},
       {R"({"b": [1], "k": 1})", "missing key \"obj\""},
       {R"({"obj": "tri.obj", "k": 1})", "missing key \"b\""},
       {R"({"obj": "tri.obj", "b": [1]})", "missing key \"k\""},
@@ -222,13 +230,15 @@ TEST_CASE_TEMPLATE("write_json_scene then read_json_scene gives the same descrip
   triangles.pins = massspring::ClothPins::TopEdge;
   triangles.mass = 0.1;
   triangles.stiffness = 1.0 / 3.0;
+  SceneDescription<double> folded = massspring::make_cloth(triangles);  // self-collision on
+  folded.self_collision = massspring::contact::SelfCollision<double>{0.01 / 3, 0.7 / 3};
   massspring::ChainOptions chain;  // edges only
   chain.points = 7;
   chain.direction = Eigen::Vector3d(1, 2, 3);
   chain.mass = 0.3;
   const std::vector<SceneDescription<double>> scenes = {massspring::make_cloth(mixed),
                                                         massspring::make_cloth(triangles),
-                                                        massspring::make_chain(chain)};
+                                                        massspring::make_chain(chain), folded};
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     CAPTURE(i);
     const SceneDescription<Scalar> scene = cast<Scalar>(scenes[i]);
@@ -294,4 +304,108 @@ TEST_CASE("write_json_scene refuses a scene it could not read back, and writes n
   CHECK_THROWS_WITH_AS(write_json_scene(dir / "s.obj", good),
                        doctest::Contains("a JSON scene must not be named .obj"), Error);
   CHECK(std::filesystem::is_empty(dir.path()));
+}
+
+TEST_CASE_TEMPLATE("read_json_scene: \"self_collision\" turns it on, its fields default", Scalar,
+                   float, double) {
+  TempDir dir;
+  dir.write("tri.obj", kTriangleObj);
+  const auto read = [&](const std::string& extra) {
+    return read_json_scene<Scalar>(
+        dir.write("s.json", R"({"obj": "tri.obj", "b": [], "k": 1)" + extra + "}"));
+  };
+  CHECK_FALSE(read("").self_collision.has_value());  // absent: off
+
+  const auto both = read(R"(, "self_collision": {"thickness": 0.01, "friction": 0.5})");
+  REQUIRE(both.self_collision.has_value());
+  CHECK(both.self_collision->thickness == Scalar(0.01));
+  CHECK(both.self_collision->friction == Scalar(0.5));
+
+  const massspring::contact::SelfCollision<Scalar> defaults;
+  const auto empty = read(R"(, "self_collision": {})");
+  REQUIRE(empty.self_collision.has_value());
+  CHECK(empty.self_collision->thickness == defaults.thickness);
+  CHECK(empty.self_collision->friction == defaults.friction);
+
+  const auto thickness_only = read(R"(, "self_collision": {"thickness": 0.002})");
+  REQUIRE(thickness_only.self_collision.has_value());
+  CHECK(thickness_only.self_collision->thickness == Scalar(0.002));
+  CHECK(thickness_only.self_collision->friction == defaults.friction);
+
+  const auto frictionless = read(R"(, "self_collision": {"friction": 0})");
+  REQUIRE(frictionless.self_collision.has_value());
+  CHECK(frictionless.self_collision->thickness == defaults.thickness);
+  CHECK(frictionless.self_collision->friction == Scalar(0));
+}
+
+TEST_CASE("read_json_scene refuses a bad \"self_collision\", naming the file and the key") {
+  TempDir dir;
+  dir.write("tri.obj", kTriangleObj);
+  const std::string path = (dir / "bad.json").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"true",
+       "key \"self_collision\": expected an object {\"thickness\": T, \"friction\": MU}, "
+       "got boolean"},
+      {"0.004", "key \"self_collision\": expected an object"},
+      {"[0.004, 0.2]", "key \"self_collision\": expected an object"},
+      {"null", "key \"self_collision\": expected an object"},
+      {R"({"thickness": 0.004, "stiffness": 1})",
+       "key \"self_collision\": unknown key \"stiffness\" (expected thickness, friction)"},
+      {R"({"thickness": 0})",
+       "key \"self_collision\": \"thickness\": expected a finite number > 0, got 0"},
+      {R"({"thickness": -0.001})",
+       "key \"self_collision\": \"thickness\": expected a finite number > 0, got -0.001"},
+      {R"({"thickness": "4mm"})",
+       "key \"self_collision\": \"thickness\": expected a number > 0, got string \"4mm\""},
+      {R"({"thickness": null})", "key \"self_collision\": \"thickness\": expected a number > 0"},
+      {R"({"friction": -0.2})",
+       "key \"self_collision\": \"friction\": expected a finite number >= 0, got -0.2"},
+      {R"({"friction": [0.2]})",
+       "key \"self_collision\": \"friction\": expected a number >= 0, got array"},
+      {R"({"thickness": 0.004, "thickness": 0.005})",
+       "key \"self_collision\": key \"thickness\" appears twice"},
+  };
+  for (const auto& [value, expected] : cases) {
+    CAPTURE(value);
+    const auto json = dir.write(
+        "bad.json", R"({"obj": "tri.obj", "b": [1], "k": 1, "self_collision": )" + value + "}");
+    CHECK_THROWS_WITH_AS(read_json_scene(json), massspring::test::contains(path + ": " + expected),
+                         Error);
+  }
+  // The same key twice at the top level, as for every key.
+  const auto twice = dir.write("bad.json", R"({"obj": "tri.obj", "b": [1], "k": 1,
+      "self_collision": {}, "self_collision": {}})");
+  CHECK_THROWS_WITH_AS(read_json_scene(twice),
+                       massspring::test::contains(path + ": key \"self_collision\" appears twice"),
+                       Error);
+  // A thickness a float cannot hold is refused in float.
+  const auto tiny =
+      dir.write("bad.json",
+                R"({"obj": "tri.obj", "b": [1], "k": 1, "self_collision": {"thickness": 1e-50}})");
+  CHECK_THROWS_WITH_AS(read_json_scene<float>(tiny),
+                       doctest::Contains("key \"self_collision\": \"thickness\""), Error);
+  CHECK(read_json_scene<double>(tiny).self_collision->thickness == 1e-50);
+}
+
+TEST_CASE("write_json_scene writes \"self_collision\" when given, and refuses a bad one") {
+  TempDir dir;
+  SceneDescription<double> s;
+  s.vertices.resize(3, 3);
+  s.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  s.faces = {{0, 1, 2}};
+  s.stiffness = 1;
+  s.self_collision = massspring::contact::SelfCollision<double>{};
+  write_json_scene(dir / "tri.json", s);
+  const auto j = nlohmann::json::parse(massspring::test::read_bytes(dir / "tri.json"));
+  CHECK(j.at("self_collision") == nlohmann::json({{"thickness", 0.004}, {"friction", 0.2}}));
+
+  s.self_collision->friction = -1;
+  const auto json = dir / "other.json";
+  CHECK_THROWS_WITH_AS(
+      write_json_scene(json, s),
+      massspring::test::contains(json.string() +
+                                 ": self-collision: friction must be finite and >= 0, got -1"),
+      Error);
+  CHECK_FALSE(std::filesystem::exists(json));
+  CHECK_FALSE(std::filesystem::exists(dir / "other.obj"));
 }

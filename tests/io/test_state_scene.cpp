@@ -36,6 +36,13 @@ void check_equal(const System& a, const System& b) {
   CHECK((a.positions().array() == b.positions().array()).all());
   CHECK((a.velocities().array() == b.velocities().array()).all());
   CHECK(a.has_spring_damping() == b.has_spring_damping());
+  CHECK(a.surface() == b.surface());
+  CHECK(a.surface_edges() == b.surface_edges());
+  REQUIRE(a.self_collision().has_value() == b.self_collision().has_value());
+  if (a.self_collision()) {
+    CHECK(a.self_collision()->thickness == b.self_collision()->thickness);
+    CHECK(a.self_collision()->friction == b.self_collision()->friction);
+  }
   REQUIRE(a.forces().size() == b.forces().size());
   using Scalar = typename System::Scalar;
   for (int k = 0; k < a.forces().size(); ++k) {
@@ -204,6 +211,94 @@ TEST_CASE("state scene: bad files are refused, naming the file") {
                        ((dir / "good.json").string() +
                         ": a state scene (written by io::write_scene), not a JSON+OBJ scene: load "
                         "it with io::load_scene or io::read_state_scene")
+                           .c_str(),
+                       Error);
+}
+
+TEST_CASE_TEMPLATE("state scene: the surface and self-collision are written and read back", System,
+                   massspring::MassSpringSystem<double, massspring::Sparse>,
+                   massspring::MassSpringSystem<float, massspring::Dense>) {
+  using Scalar = typename System::Scalar;
+  TempDir dir;
+  System a = scrambled_cloth<System>();
+  REQUIRE(a.surface().rows() == 2 * 6 * 4);  // make_system: 2 triangles per cell
+  massspring::contact::SelfCollision<Scalar> parameters;
+  parameters.thickness = Scalar(0.01) / 3;  // not short decimals
+  parameters.friction = Scalar(0.7) / 3;
+  a.set_self_collision(parameters);
+  massspring::io::write_scene(a, dir / "state.json");
+  const auto j = nlohmann::json::parse(massspring::test::read_bytes(dir / "state.json"));
+  CHECK(j.at("surface").size() == 48);
+  CHECK(j.at("self_collision").size() == 2);
+
+  const System b = massspring::io::read_state_scene<System>(dir / "state.json").system;
+  check_equal(a, b);
+  massspring::io::write_scene(b, dir / "again.json");
+  CHECK(massspring::test::read_bytes(dir / "state.json") ==
+        massspring::test::read_bytes(dir / "again.json"));
+
+  // Off and without a surface: neither key is written, and the system read back has neither.
+  System c = a;
+  c.clear_self_collision();
+  c.set_surface(massspring::Triangles(0, 3));
+  massspring::io::write_scene(c, dir / "plain.json");
+  const auto plain = nlohmann::json::parse(massspring::test::read_bytes(dir / "plain.json"));
+  CHECK_FALSE(plain.contains("surface"));
+  CHECK_FALSE(plain.contains("self_collision"));
+  const System d = massspring::io::load_scene<System>(dir / "plain.json");
+  check_equal(c, d);
+  CHECK(d.surface().rows() == 0);
+  CHECK_FALSE(d.self_collision().has_value());
+}
+
+TEST_CASE("state scene: a bad surface or self-collision is refused, naming the file and the key") {
+  TempDir dir;
+  using System = massspring::MassSpringSystem<double, massspring::Sparse>;
+  System good = scrambled_cloth<System>();
+  good.set_self_collision({});
+  massspring::io::write_scene(good, dir / "good.json");
+  const auto root = nlohmann::json::parse(massspring::test::read_bytes(dir / "good.json"));
+  const std::string bad = (dir / "bad.json").string();
+  auto refused = [&](const char* key, const nlohmann::json& value, const std::string& message) {
+    nlohmann::json j = root;
+    j[key] = value;
+    CAPTURE(j.dump());
+    dir.write("bad.json", j.dump());
+    CHECK_THROWS_WITH_AS(massspring::io::load_scene<System>(dir / "bad.json"),
+                         (bad + ": " + message).c_str(), Error);
+  };
+  using J = nlohmann::json;
+  refused("surface", J::array({J::array({0, 1, 99})}),
+          "key \"surface\": surface triangle 0 = (0, 1, 99): point index 99 out of range [0, 35)");
+  refused("surface", J::array({J::array({0, 1, 1})}),
+          "key \"surface\": surface triangle 0 = (0, 1, 1): repeats a point");
+  refused("surface", J::array({J::array({0, 1, 2})}),  // three points of row 0
+          "key \"surface\": surface triangle 0 = (0, 1, 2): zero area at the rest positions");
+  refused("surface", J::array({J::array({0, 1})}),
+          "key \"surface\": entry 0 (counting from 0): expected [a, b, c], got [0,1]");
+  refused("surface", J::array({J::array({0, 1, -8})}),
+          "key \"surface\": entry 0 (counting from 0): expected a point index (an integer >= 0), "
+          "got -8");
+  refused("surface", J::object(), "key \"surface\": expected an array of [a, b, c], got object");
+  refused("self_collision", J::array({0.004, 0.2}),
+          "key \"self_collision\": expected {\"thickness\": h, \"friction\": mu}, got array");
+  refused("self_collision", J{{"thickness", 0.0}, {"friction", 0.2}},
+          "key \"self_collision\": self-collision: thickness must be finite and > 0, got 0");
+  refused("self_collision", J{{"thickness", 0.004}, {"friction", -1}},
+          "key \"self_collision\": self-collision: friction must be finite and >= 0, got -1");
+  refused("self_collision", J{{"thickness", 0.004}},
+          "key \"self_collision\": expected both \"thickness\" and \"friction\"");
+  refused("self_collision", J{{"thickness", 0.004}, {"friction", 0.2}, {"x", 1}},
+          "key \"self_collision\": unknown key \"x\" (expected thickness, friction)");
+  refused("self_collision", J{{"thickness", "thin"}, {"friction", 0.2}},
+          "key \"self_collision\": \"thickness\": expected a number, got \"thin\"");
+  // Self-collision without a surface.
+  nlohmann::json j = root;
+  j.erase("surface");
+  dir.write("bad.json", j.dump());
+  CHECK_THROWS_WITH_AS(massspring::io::load_scene<System>(dir / "bad.json"),
+                       (bad + ": key \"self_collision\": self-collision: the system has no surface "
+                              "(set_surface(), or a scene's faces)")
                            .c_str(),
                        Error);
 }

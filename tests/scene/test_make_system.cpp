@@ -2,7 +2,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
+#include <massspring/scene/chain.hpp>
+#include <massspring/scene/cloth.hpp>
 #include <massspring/scene/make_system.hpp>
+#include <massspring/scene/net.hpp>
 #include <vector>
 
 #include "massspring/system/mass_spring_system.hpp"
@@ -98,4 +102,102 @@ TEST_CASE("make_system refuses a scene it cannot give masses to, or an invalid p
   auto negative = square_with_tail();
   negative.stiffness = -1;
   CHECK_THROWS_AS(make_system<SparseSystem>(negative), Error);
+}
+
+TEST_CASE_TEMPLATE("make_system: the faces split into fans are the surface", System,
+                   MassSpringSystem<double, Dense>, MassSpringSystem<double, Sparse>,
+                   MassSpringSystem<float, Dense>, MassSpringSystem<float, Sparse>) {
+  // The quad (0, 1, 2, 3) gives (0, 1, 2), (0, 2, 3); the tail 2-4 is a spring, not surface.
+  const System s = make_system<System>(square_with_tail());
+  massspring::Triangles expected(2, 3);
+  expected << 0, 1, 2, 0, 2, 3;
+  CHECK(s.surface() == expected);
+  massspring::Edges edges(5, 2);
+  edges << 0, 1, 0, 2, 0, 3, 1, 2, 2, 3;
+  CHECK(s.surface_edges() == edges);
+  CHECK_FALSE(s.self_collision().has_value());
+
+  // A pentagon (0, 1, 2, 3, 4): three triangles, all from vertex 0.
+  SceneDescription<double> pentagon;
+  pentagon.vertices.resize(5, 3);
+  pentagon.vertices << 1, 0, 0, 0.3, 0.95, 0, -0.8, 0.6, 0, -0.8, -0.6, 0, 0.3, -0.95, 0;
+  pentagon.faces = {{0, 1, 2, 3, 4}};
+  pentagon.stiffness = 1;
+  massspring::Triangles fan(3, 3);
+  fan << 0, 1, 2, 0, 2, 3, 0, 3, 4;
+  CHECK(make_system<System>(pentagon).surface() == fan);
+  CHECK(massspring::fan_triangles(pentagon.faces) == fan);
+}
+
+TEST_CASE("make_system: a generated cloth has 2 surface triangles per cell; chains and nets none") {
+  massspring::ClothOptions o;
+  o.columns = 6;
+  o.rows = 4;
+  for (const auto shear : {massspring::ClothShear::Both, massspring::ClothShear::One}) {
+    CAPTURE(int(shear));
+    o.shear = shear;
+    const auto s = make_system<SparseSystem>(massspring::make_cloth(o));
+    const int cells = (o.columns - 1) * (o.rows - 1);
+    CHECK(s.surface().rows() == 2 * cells);
+    // Every side of a cell once, and one diagonal per cell.
+    const int sides = o.rows * (o.columns - 1) + (o.rows - 1) * o.columns;
+    CHECK(s.surface_edges().rows() == sides + cells);
+    // Cell (0, 0): points 0, 1, 7, 6.
+    CHECK(s.surface()(0, 0) == 0);
+    CHECK(s.surface()(0, 1) == 1);
+    CHECK(s.surface()(0, 2) == o.columns + 1);
+  }
+  o.shear = massspring::ClothShear::None;  // no faces: no surface
+  CHECK(make_system<SparseSystem>(massspring::make_cloth(o)).surface().rows() == 0);
+  CHECK(make_system<SparseSystem>(massspring::make_chain({})).surface().rows() == 0);
+  CHECK(make_system<SparseSystem>(massspring::make_net({})).surface().rows() == 0);
+}
+
+TEST_CASE("make_system refuses a face of zero area or with a repeated vertex, naming the face") {
+  auto collinear = square_with_tail();
+  collinear.vertices.row(2) << 2, 0, 0;  // 0, 1, 2 on a line: the fan's first triangle is flat
+  collinear.vertices.row(3) << 0, 1, 0;
+  CHECK_THROWS_WITH_AS(
+      make_system<SparseSystem>(collinear),
+      "face 0 (0, 1, 2, 3): surface triangle 0 = (0, 1, 2): zero area at the rest positions",
+      Error);
+
+  auto second = square_with_tail();
+  second.faces = {{0, 1, 2}, {2, 3, 4}};
+  second.vertices.row(4) << -1, 1, 0;  // on the line through 2 and 3
+  CHECK_THROWS_WITH_AS(
+      make_system<SparseSystem>(second),
+      "face 1 (2, 3, 4): surface triangle 1 = (2, 3, 4): zero area at the rest positions", Error);
+
+  auto repeated = square_with_tail();
+  repeated.faces = {{0, 1, 2, 1}};
+  CHECK_THROWS_WITH_AS(make_system<SparseSystem>(repeated), "face 0: vertex 1 appears twice",
+                       Error);
+}
+
+TEST_CASE_TEMPLATE("make_system applies the scene's self-collision after the surface", System,
+                   MassSpringSystem<double, Sparse>, MassSpringSystem<float, Dense>) {
+  using Scalar = typename System::Scalar;
+  auto scene = square_with_tail();
+  scene.self_collision = massspring::contact::SelfCollision<double>{0.01, 0.5};
+  const System s = make_system<System>(scene);
+  REQUIRE(s.self_collision().has_value());
+  CHECK(s.self_collision()->thickness == Scalar(0.01));
+  CHECK(s.self_collision()->friction == Scalar(0.5));
+
+  auto no_faces = massspring::make_chain({});
+  no_faces.self_collision = massspring::contact::SelfCollision<double>{};
+  CHECK_THROWS_WITH_AS(make_system<System>(no_faces),
+                       doctest::Contains("self_collision: the scene has no faces"), Error);
+
+  scene.self_collision->thickness = 0;
+  CHECK_THROWS_WITH_AS(make_system<System>(scene),
+                       "self-collision: thickness must be finite and > 0, got 0", Error);
+  scene.self_collision->thickness = 1e-60;  // > 0 in double, 0 in float
+  if (std::is_same_v<Scalar, float>)
+    CHECK_THROWS_WITH_AS(make_system<System>(scene), doctest::Contains("thickness"), Error);
+  scene.self_collision->thickness = 0.004;
+  scene.self_collision->friction = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(make_system<System>(scene), doctest::Contains("friction must be finite"),
+                       Error);
 }

@@ -239,3 +239,135 @@ TEST_CASE("an empty system is valid") {
   CHECK(s.num_springs() == 0);
   CHECK(s.incidence().size() == 0);
 }
+
+namespace {
+
+// A 3 x 3 grid of points in the x-y plane (point (r, c) = 3 r + c at (c, r, 0)): 2 x 2 cells,
+// each split into triangles (a, b, c), (a, c, d) along its diagonal a-c.
+Points<double> grid_points() {
+  Points<double> v(9, 3);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) v.row(3 * r + c) << c, r, 0;
+  return v;
+}
+massspring::Triangles grid_triangles() {
+  massspring::Triangles t(8, 3);
+  int k = 0;
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      const int a = 3 * r + c, b = a + 1, cc = a + 4, d = a + 3;
+      t.row(k++) << a, b, cc;
+      t.row(k++) << a, cc, d;
+    }
+  return t;
+}
+Edges grid_structural_springs() {
+  Edges e(12, 2);
+  int k = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c + 1 < 3; ++c) e.row(k++) << 3 * r + c, 3 * r + c + 1;
+  for (int r = 0; r + 1 < 3; ++r)
+    for (int c = 0; c < 3; ++c) e.row(k++) << 3 * r + c, 3 * r + c + 3;
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("set_surface: the triangles, and their edges each once, ascending", System,
+                   MS_SYSTEM_TYPES) {
+  using Scalar = typename System::Scalar;
+  System s(grid_points().cast<Scalar>(), grid_structural_springs(), Scalar(1), Scalar(10));
+  CHECK(s.surface().rows() == 0);
+  CHECK(s.surface_edges().rows() == 0);
+  const auto revision = s.revision();
+  s.set_surface(grid_triangles());
+  CHECK(s.surface() == grid_triangles());
+  CHECK(s.revision() == revision);  // not a model change
+  // 12 sides of the cells and the 4 diagonals a-c, each once.
+  Edges expected(16, 2);
+  expected << 0, 1, 0, 3, 0, 4, 1, 2, 1, 4, 1, 5, 2, 5, 3, 4, 3, 6, 3, 7, 4, 5, 4, 7, 4, 8, 5, 8, 6,
+      7, 7, 8;
+  CHECK(s.surface_edges() == expected);
+  // An empty matrix removes it.
+  s.set_surface(massspring::Triangles(0, 3));
+  CHECK(s.surface().rows() == 0);
+  CHECK(s.surface_edges().rows() == 0);
+}
+
+TEST_CASE("set_surface refuses a bad triangle, naming it, and changes nothing") {
+  MassSpringSystem<double> s(grid_points(), grid_structural_springs(), 1.0, 10.0);
+  s.set_surface(grid_triangles());
+  massspring::Triangles bad = grid_triangles();
+  SUBCASE("an index out of range") {
+    bad(5, 2) = 9;
+    CHECK_THROWS_WITH_AS(s.set_surface(bad),
+                         "surface triangle 5 = (3, 7, 9): point index 9 out of range [0, 9)",
+                         Error);
+    bad(5, 2) = -1;
+    CHECK_THROWS_WITH_AS(s.set_surface(bad), doctest::Contains("surface triangle 5 = (3, 7, -1)"),
+                         Error);
+  }
+  SUBCASE("a point repeated") {
+    bad(3, 1) = 1;
+    CHECK_THROWS_WITH_AS(s.set_surface(bad), "surface triangle 3 = (1, 1, 4): repeats a point",
+                         Error);
+  }
+  SUBCASE("zero area: three points on a line") {
+    bad.row(6) << 3, 4, 5;
+    CHECK_THROWS_WITH_AS(s.set_surface(bad),
+                         "surface triangle 6 = (3, 4, 5): zero area at the rest positions", Error);
+  }
+  SUBCASE("zero area: two points at one place") {
+    Points<double> v = grid_points();
+    v.row(8) = v.row(4);
+    MassSpringSystem<double> t(v, grid_structural_springs(), 1.0, 10.0);
+    CHECK_THROWS_WITH_AS(t.set_surface(grid_triangles()),
+                         "surface triangle 6 = (4, 5, 8): zero area at the rest positions", Error);
+    CHECK(t.surface().rows() == 0);
+  }
+  CHECK(s.surface() == grid_triangles());
+  CHECK(s.surface_edges().rows() == 16);
+}
+
+TEST_CASE_TEMPLATE("set_self_collision needs a surface and parameters in range", System,
+                   MS_SYSTEM_TYPES) {
+  using Scalar = typename System::Scalar;
+  using Parameters = massspring::contact::SelfCollision<Scalar>;
+  System s(grid_points().cast<Scalar>(), grid_structural_springs(), Scalar(1), Scalar(10));
+  CHECK_FALSE(s.self_collision().has_value());
+  CHECK_FALSE(s.has_collision_response());
+  CHECK_THROWS_WITH_AS(s.set_self_collision(Parameters{}),
+                       doctest::Contains("self-collision: the system has no surface"), Error);
+  CHECK_FALSE(s.self_collision().has_value());
+
+  s.set_surface(grid_triangles());
+  const auto refused = [&](Scalar thickness, Scalar friction, const char* message) {
+    Parameters p;
+    p.thickness = thickness;
+    p.friction = friction;
+    CHECK_THROWS_WITH_AS(s.set_self_collision(p), doctest::Contains(message), Error);
+    CHECK_FALSE(s.self_collision().has_value());
+  };
+  const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
+  refused(0, Scalar(0.2), "self-collision: thickness must be finite and > 0, got 0");
+  refused(Scalar(-0.001), Scalar(0.2), "self-collision: thickness must be finite and > 0");
+  refused(nan, Scalar(0.2), "self-collision: thickness must be finite and > 0, got nan");
+  refused(std::numeric_limits<Scalar>::infinity(), Scalar(0.2), "thickness must be finite");
+  refused(Scalar(0.004), Scalar(-0.1), "self-collision: friction must be finite and >= 0");
+  refused(Scalar(0.004), nan, "self-collision: friction must be finite and >= 0, got nan");
+
+  const Parameters defaults;
+  CHECK(defaults.thickness == Scalar(0.004));
+  CHECK(defaults.friction == Scalar(0.2));
+  Parameters p;
+  p.thickness = Scalar(0.01);
+  p.friction = 0;  // frictionless is allowed
+  s.set_self_collision(p);
+  REQUIRE(s.self_collision().has_value());
+  CHECK(s.self_collision()->thickness == Scalar(0.01));
+  CHECK(s.self_collision()->friction == Scalar(0));
+  CHECK(s.has_collision_response());
+  s.clear_self_collision();
+  CHECK_FALSE(s.self_collision().has_value());
+  CHECK_FALSE(s.has_collision_response());
+}

@@ -26,8 +26,8 @@ struct SelfCollision {
 
   /// @brief Throws Error naming the field when a value is out of range or not finite.
   void validate() const {
-    detail::require_number("self-collision", "thickness", double(thickness), true);
-    detail::require_number("self-collision", "friction", double(friction), false);
+    massspring::detail::require_number("self-collision", "thickness", double(thickness), true);
+    massspring::detail::require_number("self-collision", "friction", double(friction), false);
   }
 };
 

@@ -54,7 +54,7 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
     return Error(detail::message(name, ": ", parts...));
   };
 
-  std::set<std::string> seen;
+  std::set<std::string> seen, self_collision_keys;
   // Inside "colliders": the entry being read and the keys of each object open in it.
   std::string root_key;
   long long entry = -1;
@@ -67,6 +67,10 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
         const std::string& key = parsed.get_ref<const std::string&>();
         if (!seen.insert(key).second) throw error("key \"", key, "\" appears twice");
         root_key = key;
+      } else if (depth == 2 && root_key == "self_collision" && event == Event::key) {
+        const std::string& key = parsed.get_ref<const std::string&>();
+        if (!self_collision_keys.insert(key).second)
+          throw error("key \"self_collision\": key \"", key, "\" appears twice");
       } else if (depth >= 2 && root_key == "colliders") {
         if (depth == 2 &&
             (event == Event::object_start || event == Event::array_start || event == Event::value))
@@ -105,8 +109,9 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
           "key \"bc\" (pinned positions) is not supported: pinned vertices stay at their "
           "rest positions");
     if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png" &&
-        key != "colliders")
-      throw error("unknown key \"", key, "\" (expected obj, b, k, m, png, colliders)");
+        key != "colliders" && key != "self_collision")
+      throw error("unknown key \"", key,
+                  "\" (expected obj, b, k, m, png, colliders, self_collision)");
   }
   auto require = [&](const char* key) -> const Json& {
     const auto it = root.find(key);
@@ -147,6 +152,24 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
   if (const auto png = root.find("png"); png != root.end() && !png->is_string())
     throw error("key \"png\": expected the name of a texture image (a string), got ",
                 detail::describe_json(*png));
+  if (const auto sc = root.find("self_collision"); sc != root.end()) {
+    if (!sc->is_object())
+      throw error(
+          "key \"self_collision\": expected an object {\"thickness\": T, \"friction\": MU}, got ",
+          detail::describe_json(*sc));
+    contact::SelfCollision<Scalar> parameters;
+    for (const auto& item : sc->items()) {
+      const std::string& key = item.key();
+      const bool thickness = key == "thickness";
+      if (!thickness && key != "friction")
+        throw error("key \"self_collision\": unknown key \"", key,
+                    "\" (expected thickness, friction)");
+      const std::string path = "self_collision\": \"" + key;
+      (thickness ? parameters.thickness : parameters.friction) =
+          number(path.c_str(), item.value(), thickness);
+    }
+    scene.self_collision = parameters;
+  }
 
   std::optional<ObjMesh<Scalar>> loaded = load_obj(obj_path);
   if (!loaded) throw error("key \"obj\": OBJ file ", obj_path.string(), " not found");
@@ -187,7 +210,10 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 ///   each vertex its lumped Voronoi area (density 1 kg/m^2);
 /// - `"png"` (optional string): a texture, ignored;
 /// - `"colliders"` (optional array of objects): obstacles, in order (docs/scenes.md lists their
-///   keys); a mesh's `"obj"` is relative to the JSON file's folder, its polygons fan-triangulated.
+///   keys); a mesh's `"obj"` is relative to the JSON file's folder, its polygons fan-triangulated;
+/// - `"self_collision"` (optional object): self-collision of the cloth's surface, on when present:
+///   `{"thickness": T, "friction": MU}`, both optional, thickness [m] > 0 (default 0.004), friction
+///   >= 0 (default 0.2); make_system() refuses it for a scene without faces.
 ///
 /// @tparam Scalar float or double
 /// @param[in] json  the .json file
@@ -196,7 +222,10 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 /// position in "b"), a non-finite or negative stiffness, a mass that is not > 0; naming the file
 /// with nlohmann's line and column when the text is not JSON; for a state scene (the key
 /// "massspring_state": written by write_scene(), read by load_scene() or read_state_scene()); and
-/// read_obj()'s errors (file and line) for the OBJ file; for a collider, naming its entry:
+/// read_obj()'s errors (file and line) for the OBJ file; for "self_collision" that is not an
+/// object, has a key other than thickness and friction, or a value out of range (naming it:
+/// `<json>: key "self_collision": "thickness": expected a finite number > 0, got 0`); for a
+/// collider, naming its entry:
 /// `<json>: colliders[2] (sphere): "radius" must be finite and > 0, got -1`.
 template <class Scalar = double>
 SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
@@ -210,12 +239,15 @@ SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
 
 /// @brief Writes a scene in the assignment's JSON+OBJ format: `<stem>.obj` beside `json` (with
 /// write_obj(): polygons as `f a b c ...`, edges as `f i j`), then `json` referencing it, pins
-/// 1-based, `"m"` only when the mass is given, the colliders (a mesh collider's triangles in
+/// 1-based, `"m"` only when the mass is given, `"self_collision"` (both fields) only when it is
+/// given, the colliders (a mesh collider's triangles in
 /// `<stem>_collider<i>.obj` beside it, i its index). Each file is written atomically (`.tmp`,
 /// then renamed). read_json_scene() gives the same description back, bit for bit.
 /// @param[in] json   the .json file to write (its folder must exist); must not end in .obj
 /// @param[in] scene  faces of 3 or more vertices, indices and pins in range, stiffness finite and
-///                   >= 0, mass (when given) finite and > 0, colliders make_collider() accepts
+///                   >= 0, mass (when given) finite and > 0, self-collision (when given) with
+///                   parameters SelfCollision::validate() accepts, colliders make_collider()
+///                   accepts
 /// @throws Error naming the file and the item for an invalid scene (nothing is written) or when
 /// a file cannot be written.
 template <class Scalar>
@@ -231,6 +263,13 @@ void write_json_scene(const std::filesystem::path& json, const SceneDescription<
     throw error("stiffness must be finite and >= 0, got ", scene.stiffness);
   if (scene.mass && !(std::isfinite(*scene.mass) && *scene.mass > 0))
     throw error("mass must be finite and > 0, got ", *scene.mass);
+  if (scene.self_collision) {
+    try {
+      scene.self_collision->validate();
+    } catch (const Error& e) {
+      throw error(e.what());
+    }
+  }
   const Eigen::Index n = scene.vertices.rows();
   for (std::size_t p = 0; p < scene.pinned.size(); ++p)
     if (scene.pinned[p] < 0 || scene.pinned[p] >= n)
@@ -264,6 +303,10 @@ void write_json_scene(const std::filesystem::path& json, const SceneDescription<
   }
   out += "],\n  \"k\": " + detail::json_number(scene.stiffness);
   if (scene.mass) out += ",\n  \"m\": " + detail::json_number(*scene.mass);
+  if (scene.self_collision)
+    out += ",\n  \"self_collision\": {\"thickness\": " +
+           detail::json_number(scene.self_collision->thickness) +
+           ", \"friction\": " + detail::json_number(scene.self_collision->friction) + "}";
   detail::append_json_colliders(out, json, scene.colliders);
   out += "\n}\n";
   detail::write_text_file_atomically(json, out);

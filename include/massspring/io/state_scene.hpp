@@ -15,6 +15,8 @@
 ///                 {"type": "constant force", "force": [fx, fy, fz]},
 ///                 {"type": "linear drag", "beta": b}],
 ///      "colliders": [{"type": "plane", ...}, ...],  // optional: io/detail/state_colliders.hpp
+///      "surface": [[a, b, c], ...],                 // optional: io/detail/state_surface.hpp
+///      "self_collision": {"thickness": h, "friction": mu},   // optional: on when present
 ///      "faces": [[a, b, c, ...], ...], "edges": [[i, j], ...],  // optional: for drawing only
 ///      "run": {...}}                                // optional: the caller's, kept as it is
 ///
@@ -22,7 +24,8 @@
 /// are widened to double first, so they read back exactly too): loading the file gives a system
 /// equal to the written one in every field, bit for bit (masses, stiffness, rest lengths,
 /// damping, pins and their targets, positions, velocities, the force terms in order, the
-/// colliders with their current pose and velocities). Only the
+/// colliders with their current pose and velocities, the surface and the self-collision
+/// parameters). Only the
 /// revision() differs: a loaded system is a new model.
 
 #include <cmath>
@@ -39,6 +42,7 @@
 #include "massspring/forces/linear_drag.hpp"
 #include "massspring/io/detail/json_text.hpp"
 #include "massspring/io/detail/state_colliders.hpp"
+#include "massspring/io/detail/state_surface.hpp"
 #include "massspring/io/detail/text_file.hpp"
 #include "massspring/io/obj.hpp"
 #include "massspring/system/mass_spring_system.hpp"
@@ -155,6 +159,7 @@ void write_scene(const System& system, const std::filesystem::path& path,
     out += ",\n  \"colliders\": ";
     detail::append_state_colliders(out, system.colliders());
   }
+  detail::append_state_surface(out, system);
   if (!extras.faces.empty()) {
     out += ",\n  \"faces\": [";
     for (std::size_t f = 0; f < extras.faces.size(); ++f) {
@@ -201,10 +206,10 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
   if (!version.is_number_integer() || version.get<long long>() != 1)
     throw error("key \"massspring_state\": this reader knows version 1, got ", version.dump());
   static const char* const known[] = {
-      "massspring_state", "rest_positions", "springs", "masses",      "stiffness",
-      "rest_lengths",     "damping",        "pinned",  "pin_targets", "positions",
-      "velocities",       "forces",         "faces",   "edges",       "run",
-      "colliders"};
+      "massspring_state", "rest_positions", "springs",       "masses",      "stiffness",
+      "rest_lengths",     "damping",        "pinned",        "pin_targets", "positions",
+      "velocities",       "forces",         "faces",         "edges",       "run",
+      "colliders",        "surface",        "self_collision"};
   for (const auto& item : root.items()) {
     bool ok = false;
     for (const char* k : known) ok = ok || item.key() == k;
@@ -311,6 +316,7 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
     if (const auto colliders = root.find("colliders"); colliders != root.end())
       for (auto& c : detail::parse_state_colliders<Scalar>(*colliders))
         out.system.add_collider(std::move(c));
+    detail::parse_state_surface(root, out.system);
   } catch (const Error& e) {
     const std::string what = e.what();
     if (what.rfind(name + ": ", 0) == 0) throw;
@@ -352,7 +358,8 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
 /// @param[in] path  the .json file
 /// @throws Error naming the path: not JSON, not a state scene, an unknown version or key, a
 /// missing or mistyped key, a count that does not match the points or springs, and every error of
-/// the system's constructor and setters (a mass <= 0, a spring out of range, ...).
+/// the system's constructor and setters (a mass <= 0, a spring out of range, a surface triangle
+/// out of range or of zero area, self-collision without a surface, ...).
 template <class System>
 StateScene<System> read_state_scene(const std::filesystem::path& path) {
   const std::string text = detail::read_text_file(path, "state scene");

@@ -3,6 +3,8 @@
 /// @brief make_system(): a MassSpringSystem from a SceneDescription.
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -12,11 +14,60 @@
 
 namespace massspring {
 
+/// @brief The triangles of polygons split as fans: face (f0, f1, ..., fk) gives (f0, fi, fi+1)
+/// for i = 1 .. k-1, in face order. `face_of`, when given, receives each triangle's face index.
+inline Triangles fan_triangles(const std::vector<std::vector<int>>& faces,
+                               std::vector<std::size_t>* face_of = nullptr) {
+  std::size_t count = 0;
+  for (const auto& face : faces) count += face.size() >= 3 ? face.size() - 2 : 0;
+  Triangles triangles(Eigen::Index(count), 3);
+  if (face_of) face_of->assign(count, 0);
+  Eigen::Index t = 0;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (std::size_t i = 1; i + 1 < faces[f].size(); ++i, ++t) {
+      triangles.row(t) << faces[f][0], faces[f][i], faces[f][i + 1];
+      if (face_of) (*face_of)[std::size_t(t)] = f;
+    }
+  return triangles;
+}
+
+namespace detail {
+
+/// @brief Gives `system` the fan triangles of `faces` as its surface; an error names the face
+/// (index from 0 and its vertices) before the system's own message about the triangle.
+template <class System>
+void set_face_surface(System& system, const std::vector<std::vector<int>>& faces) {
+  std::vector<std::size_t> face_of;
+  const Triangles triangles = fan_triangles(faces, &face_of);
+  try {
+    system.set_surface(triangles);
+  } catch (const Error& e) {
+    // Find the triangle it refused (set_surface checks them in order), to name its face.
+    System probe = system;
+    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+      try {
+        probe.set_surface(Triangles(triangles.row(t)));
+      } catch (const Error&) {
+        const std::vector<int>& face = faces[face_of[std::size_t(t)]];
+        std::string vertices;
+        for (std::size_t v = 0; v < face.size(); ++v) vertices += message(v ? ", " : "", face[v]);
+        throw Error(message("face ", face_of[std::size_t(t)], " (", vertices, "): ", e.what()));
+      }
+    }
+    throw;
+  }
+}
+
+}  // namespace detail
+
 /// @brief Builds the system a scene describes: springs from face_springs(), rest lengths from the
 /// vertices, uniform stiffness, the given uniform mass or else voronoi_masses(), pins at the rest
-/// positions, then the colliders in their order.
-/// @throws Error for invalid indices, a missing mass without faces, a vertex of zero mass, or a
-/// collider make_collider() refuses (named `colliders[i] (shape): `).
+/// positions, the surface (the faces split into fans of triangles, fan_triangles(); none without
+/// faces), self-collision when the scene asks for it, then the colliders in their order.
+/// @throws Error for invalid indices, a missing mass without faces, a vertex of zero mass, a face
+/// with a fan triangle of zero area (naming the face and the triangle), self-collision asked for
+/// without faces or with parameters out of range, or a collider make_collider() refuses (named
+/// `colliders[i] (shape): `).
 template <class System, class Scalar>
 System make_system(const SceneDescription<Scalar>& scene) {
   using S = typename System::Scalar;
@@ -38,6 +89,17 @@ System make_system(const SceneDescription<Scalar>& scene) {
   System system(scene.vertices.template cast<S>(), springs, masses,
                 Vector<S>::Constant(springs.rows(), S(scene.stiffness)));
   system.pin(scene.pinned);
+  if (!scene.faces.empty()) detail::set_face_surface(system, scene.faces);
+  if (scene.self_collision) {
+    if (scene.faces.empty())
+      throw Error(
+          "self_collision: the scene has no faces, so no surface to collide (chains and nets "
+          "have none)");
+    contact::SelfCollision<S> parameters;
+    parameters.thickness = S(scene.self_collision->thickness);
+    parameters.friction = S(scene.self_collision->friction);
+    system.set_self_collision(parameters);
+  }
   for (std::size_t c = 0; c < scene.colliders.size(); ++c) {
     const ColliderDescription<Scalar>& d = scene.colliders[c];
     try {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "massspring/contact/self_collision.hpp"
 #include "massspring/scene/collider_description.hpp"
 #include "massspring/types.hpp"
 
@@ -20,8 +21,9 @@ template <class Scalar>
 struct SceneDescription {
   /// @brief #V by 3 vertex positions [m].
   Points<Scalar> vertices = Points<Scalar>(0, 3);
-  /// @brief Polygons (3 or more vertex indices each, 0-based). They carry springs and, when `mass`
-  /// is absent, the surface whose lumped Voronoi areas are the masses (density 1 kg/m^2).
+  /// @brief Polygons (3 or more vertex indices each, 0-based). They carry springs, are the system's
+  /// surface (each split into a fan of triangles by make_system()) and, when `mass` is absent,
+  /// give the lumped Voronoi areas that are the masses (density 1 kg/m^2).
   std::vector<std::vector<int>> faces;
   /// @brief Two-vertex springs (0-based), the OBJ's `f i j` lines.
   Edges edges = Edges(0, 2);
@@ -34,6 +36,8 @@ struct SceneDescription {
   /// @brief Obstacles (the key "colliders"), in file order: make_system() adds them to the
   /// system in this order.
   std::vector<ColliderDescription<Scalar>> colliders;
+  /// @brief Self-collision of the surface (the key "self_collision"); absent: off. Needs faces.
+  std::optional<contact::SelfCollision<Scalar>> self_collision;
 };
 
 }  // namespace massspring
