@@ -52,7 +52,14 @@ void bind_step_report(py::module_& m) {
       .def_readonly("refactorized", &StepReport::refactorized)
       .def_readonly("factorization_failed", &StepReport::factorization_failed)
       .def_readonly("blew_up", &StepReport::blew_up)
-      .def("ok", &StepReport::ok, "finite and not blown up and the factorisation succeeded")
+      .def_readonly("contact_impulses", &StepReport::contact_impulses,
+                    "Surface contact's repulsion and collision impulses in this step.")
+      .def_readonly("contact_zone_points", &StepReport::contact_zone_points,
+                    "Points surface contact's impact zones moved rigidly in this step.")
+      .def_readonly("contact_resolved", &StepReport::contact_resolved,
+                    "False when surface contact could not remove every crossing (nothing changed).")
+      .def("ok", &StepReport::ok,
+           "finite, not blown up, the factorisation succeeded and the contact was resolved")
       .def("__repr__", [](const StepReport& r) {
         return detail::message("StepReport(iterations=", r.iterations,
                                ", converged=", r.converged ? "True" : "False",

@@ -343,7 +343,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   std::vector<double> ms;
   ms.reserve(std::size_t(std::min(p.steps, 1 << 20)));
   long long iterations = 0, diverged_at = -1, interrupted_at = -1, frame = p.first_frame;
-  bool blew_up = false;
+  bool blew_up = false, unresolved = false;
   int signal = 0;
   std::optional<massspring::DivergenceGuard<System>> guard;
   try {
@@ -374,6 +374,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
       if (!report.ok()) {
         diverged_at = frame + 1;
         blew_up = report.blew_up;
+        unresolved = !report.contact_resolved;
         break;
       }
       ++frame;
@@ -424,9 +425,12 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   }
   if (diverged_at > 0) {
     std::fprintf(stderr,
-                 "massspring-simulate: step %lld: the step produced a non-finite state; stopped "
-                 "with the last finite state (steps %s%lld written)\n",
-                 diverged_at, range.c_str(), diverged_at - 1);
+                 "massspring-simulate: step %lld: %s; stopped with the last %s state (steps %s%lld "
+                 "written)\n",
+                 diverged_at,
+                 unresolved ? "surface contact left a crossing its rounds could not remove"
+                            : "the step produced a non-finite state",
+                 unresolved ? "good" : "finite", range.c_str(), diverged_at - 1);
     return kExitDiverged;
   }
   if (interrupted_at >= 0) {

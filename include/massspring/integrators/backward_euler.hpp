@@ -7,11 +7,11 @@
 #include <cmath>
 #include <limits>
 
-#include "massspring/contact/collision_handler.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/detail/jacobian_assembly.hpp"
+#include "massspring/integrators/detail/commit_step.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/linear_solver.hpp"
 #include "massspring/system/mass_spring_system.hpp"
@@ -147,21 +147,7 @@ class BackwardEuler {
     }
     if (has_potential) report.energy = double(objective(system, x_, moved_));
     v_ = v0 + moved_ / h;
-    for (std::size_t r = 0; r < pinned.size(); ++r)
-      v_.row(pinned[r]) = (x_.row(pinned[r]) - x0.row(pinned[r])) / h;
-    if (system.has_collision_response()) {
-      contact::handle_collisions(system, x0, v0, x_, v_, h);
-      for (std::size_t r = 0; r < pinned.size(); ++r) {  // an impact zone may have reset one
-        x_.row(pinned[r]) = system.pin_targets().row(Eigen::Index(r));
-        v_.row(pinned[r]) = (x_.row(pinned[r]) - x0.row(pinned[r])) / h;
-      }
-    }
-    report.finite = x_.allFinite() && v_.allFinite();
-    if (report.finite) {
-      system.positions() = x_;
-      system.velocities() = v_;
-      system.colliders().end_step();
-    }
+    detail::commit_step(system, x_, v_, h, report);
     return report;
   }
 

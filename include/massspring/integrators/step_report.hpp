@@ -36,10 +36,19 @@ struct StepReport {
   /// @brief True when a DivergenceGuard found the total energy after this step beyond its limit
   /// (an energy blow-up). The guard then restored the state from before the step.
   bool blew_up = false;
+  /// @brief Surface contact (contact/response/surface_contact.hpp): the repulsion and collision
+  /// impulses of this step, and the points its impact zones moved rigidly.
+  int contact_impulses = 0;
+  int contact_zone_points = 0;
+  /// @brief False when surface contact could not remove every crossing within its rounds. Nothing
+  /// was changed then.
+  bool contact_resolved = true;
 
-  /// @brief A step succeeded when it could factorise, its result is finite and its energy did not
-  /// blow up.
-  [[nodiscard]] bool ok() const { return finite && !blew_up && !factorization_failed; }
+  /// @brief A step succeeded when it could factorise, its result is finite, its energy did not
+  /// blow up and its contact was resolved.
+  [[nodiscard]] bool ok() const {
+    return finite && !blew_up && !factorization_failed && contact_resolved;
+  }
 };
 
 }  // namespace massspring

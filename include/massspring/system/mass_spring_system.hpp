@@ -16,6 +16,7 @@
 
 #include "massspring/contact/colliders/colliders.hpp"
 #include "massspring/contact/collision_handler.hpp"
+#include "massspring/contact/response/surface_contact.hpp"
 #include "massspring/contact/self_collision.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -346,6 +347,7 @@ class MassSpringSystem {
     for (std::size_t e = 0; e < edges.size(); ++e)
       surface_edges_.row(Eigen::Index(e)) << edges[e].first, edges[e].second;
     surface_ = triangles;
+    if (surface_.rows() > 0) surface_contact_.arm();
   }
   /// @brief The surface's triangles (#triangles by 3, 0-based; empty when none was set).
   [[nodiscard]] const Triangles& surface() const { return surface_; }
@@ -361,6 +363,9 @@ class MassSpringSystem {
       throw Error("self-collision: the system has no surface (set_surface(), or a scene's faces)");
     self_collision_ = parameters;
   }
+  /// @brief The end-of-step surface contact pass (for integrators; see
+  /// integrators/detail/commit_step.hpp).
+  [[nodiscard]] contact::SurfaceContact<Scalar>& surface_contact() { return surface_contact_; }
   /// @brief Turns self-collision off (the default).
   void clear_self_collision() { self_collision_.reset(); }
   /// @brief The self-collision parameters, or nothing when it is off.
@@ -489,6 +494,7 @@ class MassSpringSystem {
   Triangles surface_ = Triangles(0, 3);
   Edges surface_edges_ = Edges(0, 2);
   std::optional<contact::SelfCollision<Scalar>> self_collision_;
+  contact::SurfaceContact<Scalar> surface_contact_;
   bool damped_ = false;
   PointsType pin_targets_ = PointsType(0, 3);
   PointsType positions_ = PointsType(0, 3);

@@ -28,10 +28,10 @@
 #include <memory>
 #include <utility>
 
-#include "massspring/contact/distance/point_box.hpp"
-#include "massspring/contact/distance/point_segment.hpp"
 #include "massspring/contact/colliders/rotation.hpp"
 #include "massspring/contact/colliders/triangle_mesh.hpp"
+#include "massspring/contact/distance/point_box.hpp"
+#include "massspring/contact/distance/point_segment.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/types.hpp"
@@ -220,6 +220,9 @@ class Collider {
   }
   [[nodiscard]] const M3& rotation() const { return rotation_; }
   [[nodiscard]] const V3& translation() const { return translation_; }
+  /// @brief The pose set by the last begin_step(): where the collider will be at the step's end.
+  [[nodiscard]] const M3& end_rotation() const { return end_rotation_; }
+  [[nodiscard]] const V3& end_translation() const { return end_translation_; }
   [[nodiscard]] const V3& velocity() const { return velocity_; }
   [[nodiscard]] const V3& angular_velocity() const { return angular_velocity_; }
   /// @brief The mesh of a mesh collider (null for the others).

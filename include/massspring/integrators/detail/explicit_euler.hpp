@@ -5,10 +5,10 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "massspring/contact/collision_handler.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
+#include "massspring/integrators/detail/commit_step.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
@@ -50,32 +50,10 @@ class ExplicitStepper {
     for (int i = 0; i < n_; ++i) v_.row(i) = v.row(i) + (dt_ * inverse_mass_(i)) * f_.row(i);
   }
 
-  /// @brief Pins, collision response (the system's handler, if any), finiteness check, commit.
-  /// x_ and v_ hold the candidate state.
+  /// @brief Ends the step (commit_step.hpp): x_ and v_ hold the candidate state.
   StepReport commit(System& system) {
-    const PointsType& x0 = system.positions();
-    const auto& pinned = system.pinned();
-    auto pin = [&] {
-      for (std::size_t r = 0; r < pinned.size(); ++r) {
-        const int i = pinned[r];
-        x_.row(i) = system.pin_targets().row(Eigen::Index(r));
-        v_.row(i) = (x_.row(i) - x0.row(i)) / dt_;
-      }
-    };
-    pin();
-    if (system.has_collision_response()) {
-      contact::handle_collisions(system, x0, system.velocities(), x_, v_, dt_);
-      pin();  // a handler leaves pinned points alone; an impact zone may have reset one
-    }
     StepReport report;
-    // One vectorised pass: a sum is finite only when every term is (a sum of finite values can
-    // overflow only when they are near 1e308, which is divergence anyway).
-    report.finite = std::isfinite(x_.sum() + v_.sum());
-    if (report.finite) {  // swap the buffers: no copy, no allocation
-      system.positions().swap(x_);
-      system.velocities().swap(v_);
-      system.colliders().end_step();
-    }
+    commit_step(system, x_, v_, dt_, report);
     return report;
   }
 

@@ -18,6 +18,7 @@
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/springs.hpp"
+#include "massspring/integrators/detail/commit_step.hpp"
 #include "massspring/integrators/local_global/anderson.hpp"
 #include "massspring/integrators/local_global/chebyshev.hpp"
 #include "massspring/integrators/local_global/contact_projection.hpp"
@@ -353,15 +354,7 @@ class FastMassSpring {
         }
       }
       // Friction was the contact term's, inside the iteration: not applied a second time.
-      contact::handle_collisions(system, positions, velocities, x_end_, v_end_, dt_,
-                                 !contact_.active());
-      if (!x_end_.allFinite() || !v_end_.allFinite()) {
-        report.finite = false;
-        return report;
-      }
-      positions = x_end_;  // same sizes: no allocation
-      velocities = v_end_;
-      system.colliders().end_step();
+      detail::commit_step(system, x_end_, v_end_, dt_, report, !contact_.active());
       return report;
     }
     for (int r = 0; r < nx; ++r) {

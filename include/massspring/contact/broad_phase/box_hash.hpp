@@ -1,0 +1,123 @@
+#pragma once
+/// @file
+/// @brief BoxHash: a spatial hash of axis-aligned boxes, the broad phase of surface contact
+/// (contact/response/surface_contact.hpp): which stored boxes may overlap a query box.
+///
+/// Space is cut into cubic cells of side h; a box is entered in every cell it touches, and the
+/// cells are hashed into a table of 2^k buckets (a counting sort: O(entries) to build, no
+/// comparison sort). A query visits the buckets of the cells its box touches and reports each
+/// stored box that truly overlaps it once. Two boxes that overlap share a cell, so no overlap is
+/// missed; hash collisions only cost a box test. Cost per build O(m c) for m boxes of about c
+/// cells each; it grows with how far the elements sweep per step (Teschner et al. 2003,
+/// "Optimized spatial hashing for collision detection of deformable objects").
+///
+/// Work arrays keep their capacity: after the first builds of a given size, nothing allocates.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "massspring/types.hpp"
+
+namespace massspring::contact {
+
+/// @brief An axis-aligned box [lo, hi].
+template <class Scalar>
+struct AlignedBox3 {
+  Vector3<Scalar> lo, hi;
+  [[nodiscard]] bool overlaps(const AlignedBox3& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+
+/// @brief Boxes 0..m-1 stored for overlap queries.
+template <class Scalar>
+class BoxHash {
+ public:
+  using Box = AlignedBox3<Scalar>;
+
+  /// @brief Stores `boxes` (kept by reference until the next build: do not change them between
+  /// build() and query()) with cells of side `cell` [m] (> 0, finite; the boxes finite). Pick the
+  /// cell about the size of a typical box: a box enters every cell it touches.
+  void build(const std::vector<Box>& boxes, Scalar cell) {
+    boxes_ = &boxes;
+    inv_cell_ = Scalar(1) / cell;
+    const std::size_t m = boxes.size();
+    std::size_t entries = 0;
+    for (const Box& b : boxes) entries += cell_count(b);
+    std::size_t buckets = 1;
+    while (buckets < 2 * entries + 1) buckets *= 2;
+    mask_ = buckets - 1;
+    start_.assign(buckets + 1, 0);
+    for (const Box& b : boxes) for_each_cell(b, [&](std::uint64_t key) { ++start_[key + 1]; });
+    for (std::size_t k = 0; k < buckets; ++k) start_[k + 1] += start_[k];
+    fill_.assign(start_.begin(), start_.end() - 1);
+    ids_.resize(entries);
+    for (std::size_t i = 0; i < m; ++i)
+      for_each_cell(boxes[i], [&](std::uint64_t key) { ids_[fill_[key]++] = int(i); });
+    stamp_.assign(m, 0);
+    query_ = 0;
+  }
+
+  /// @brief Calls visit(i) once for each stored box i that overlaps `q`.
+  template <class Visit>
+  void query(const Box& q, Visit&& visit) {
+    if (++query_ == 0) {  // the stamps wrapped: clear them
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      query_ = 1;
+    }
+    const auto& boxes = *boxes_;
+    for_each_cell(q, [&](std::uint64_t key) {
+      for (std::size_t k = start_[key]; k < start_[key + 1]; ++k) {
+        const int i = ids_[k];
+        if (stamp_[std::size_t(i)] == query_) continue;
+        stamp_[std::size_t(i)] = query_;
+        if (boxes[std::size_t(i)].overlaps(q)) visit(i);
+      }
+    });
+  }
+
+ private:
+  // The cells a box touches along each axis: [lo, hi] in cell coordinates.
+  struct Range {
+    long long lo[3], hi[3];
+  };
+  Range range(const Box& b) const {
+    Range r;
+    for (int a = 0; a < 3; ++a) {
+      r.lo[a] = static_cast<long long>(std::floor(b.lo(a) * inv_cell_));
+      r.hi[a] = static_cast<long long>(std::floor(b.hi(a) * inv_cell_));
+    }
+    return r;
+  }
+  std::size_t cell_count(const Box& b) const {
+    const Range r = range(b);
+    std::size_t c = 1;
+    for (int a = 0; a < 3; ++a) c *= std::size_t(r.hi[a] - r.lo[a] + 1);
+    return c;
+  }
+  template <class Fn>
+  void for_each_cell(const Box& b, Fn&& fn) const {
+    const Range r = range(b);
+    for (long long x = r.lo[0]; x <= r.hi[0]; ++x)
+      for (long long y = r.lo[1]; y <= r.hi[1]; ++y)
+        for (long long z = r.lo[2]; z <= r.hi[2]; ++z) fn(hash(x, y, z));
+  }
+  std::uint64_t hash(long long x, long long y, long long z) const {
+    const auto h = std::uint64_t(x) * 73856093ull ^ std::uint64_t(y) * 19349663ull ^
+                   std::uint64_t(z) * 83492791ull;
+    return (h ^ (h >> 29)) & mask_;
+  }
+
+  const std::vector<Box>* boxes_ = nullptr;
+  Scalar inv_cell_ = 1;
+  std::uint64_t mask_ = 0;
+  std::vector<std::size_t> start_, fill_;
+  std::vector<int> ids_;
+  std::vector<unsigned> stamp_;
+  unsigned query_ = 0;
+};
+
+}  // namespace massspring::contact

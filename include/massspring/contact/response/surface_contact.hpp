@@ -1,0 +1,408 @@
+#pragma once
+/// @file
+/// @brief SurfaceContact: the end-of-step pass that keeps a cloth's surface from crossing itself
+/// and the obstacles' edges and faces. Given a start state with no crossing, the state it leaves
+/// has none.
+///
+/// The surface is a system's triangles and their edges (MassSpringSystem::set_surface()). The
+/// obstacles join with their thin parts as moving elements of infinite mass: a capsule's axis (an
+/// edge with the capsule's radius), a box's twelve edges, a mesh's vertices, edges and triangles,
+/// each carried by its collider from the pose at the start of the step to the one at its end.
+/// Solid interiors stay the colliders' point response (contact/colliders/colliders.hpp), which
+/// runs first.
+///
+/// Pairs: a point and a triangle it is not a corner of, two edges that share no point. Between
+/// parts of the cloth only when self-collision is on (contact/self_collision.hpp); between the
+/// cloth and an obstacle always. Positions move on straight lines over the step,
+/// x(t) = x_start + t (x_end - x_start), t in [0, 1]. The pipeline (Bridson, Fedkiw and Anderson
+/// 2002, "Robust treatment of collisions, contact and friction for cloth animation", sections
+/// 7.2-7.4; Harmon et al. 2008, "Robust treatment of simultaneous collisions"):
+///
+/// 1. Repulsion (self-collision): a pair closer than the thickness h at the end of the step whose
+///    distance shrank over it gets an inelastic impulse along its normal n that cancels the
+///    approach, up to the missing distance h - d, with Coulomb friction: the tangential relative
+///    displacement shrinks by mu times the normal one (sticking when it is smaller).
+/// 2. Continuous detection (contact/ccd/additive_ccd.hpp): a pair whose distance may fall below
+///    its gap g during the step (self: h / 10; an obstacle's edge: half its radius plus
+///    thickness) is a collision. A few rounds of inelastic impulses, each cancelling the pair's
+///    approach along the normal at the time of impact, with friction.
+/// 3. Rigid impact zones, the fail-safe: the points of collisions that remain are merged into
+///    zones (a zone grows with every collision that touches it), and each zone moves rigidly over
+///    the step, keeping its linear and angular momentum (contact/response/impact_zones.hpp); a
+///    zone that holds a pinned point stays where it started, one that holds an obstacle's
+///    element moves with that obstacle. Rigid motion keeps the distances within a zone, so the
+///    loop ends: at worst every colliding point moves as one body.
+///
+/// An impulse on a pair with points i of weights a_i (barycentric, + on one side, - on the other)
+/// and inverse masses w_i changes their displacements by a_i w_i lambda n / sum a_k^2 w_k, so
+/// that the relative displacement along n changes by lambda: total momentum is unchanged, and an
+/// inelastic normal impulse with friction no larger than Coulomb's never adds kinetic energy.
+/// Velocities change by the displacement change over dt. Pinned points (w = 0) never move.
+///
+/// Cost: a spatial hash of the swept bounding boxes (contact/broad_phase/box_hash.hpp) per round,
+/// then the narrow phase of each candidate; the work arrays keep their capacity, so after the
+/// first steps nothing allocates.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/contact/ccd/additive_ccd.hpp"
+#include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/distance/edge_edge.hpp"
+#include "massspring/contact/distance/point_triangle.hpp"
+#include "massspring/contact/response/impact_zones.hpp"
+#include "massspring/contact/response/surface_elements.hpp"
+#include "massspring/contact/self_collision.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring::contact {
+
+/// @brief What one SurfaceContact pass did.
+struct SurfaceContactReport {
+  /// @brief Repulsion and collision impulses applied.
+  int impulses = 0;
+  /// @brief Rounds of continuous detection (1 when the proposed motion had no collision).
+  int rounds = 0;
+  /// @brief Points moved rigidly in impact zones.
+  int zone_points = 0;
+  /// @brief False only when the fail-safe ran out of rounds with collisions left (the state is
+  /// then the last one tried; see max_rounds).
+  bool resolved = true;
+};
+
+/// @brief The end-of-step pass of surface contact (see the file comment). Armed by the system's
+/// set_surface(); until then resolve() does nothing and its code is not instantiated.
+template <class Scalar>
+class SurfaceContact {
+ public:
+  using V3 = Vector3<Scalar>;
+  using M3 = Eigen::Matrix<Scalar, 3, 3>;
+
+  /// @brief Rounds of collision impulses before impact zones take over.
+  int impulse_rounds = 12;
+  /// @brief Rounds of detection in all; enough for zones to merge in any realistic step.
+  int max_rounds = 64;
+
+  /// @brief Makes resolve() run the pipeline (instantiates it).
+  void arm() {
+    static constexpr Ops kOps{&SurfaceContact::resolve_all};
+    ops_ = &kOps;
+  }
+  [[nodiscard]] bool armed() const { return ops_ != nullptr; }
+
+  /// @brief The pass over one step: x_start (#points by 3, no crossing), the proposed x_end and
+  /// v_end (changed in place), dt [s], masses [kg], pinned (ascending), the surface, the
+  /// self-collision parameters (nothing: off) and the colliders after their begin_step(dt).
+  SurfaceContactReport resolve(const Points<Scalar>& x_start, Points<Scalar>& x_end,
+                               Points<Scalar>& v_end, Scalar dt, const Vector<Scalar>& masses,
+                               const std::vector<int>& pinned, const Triangles& triangles,
+                               const Edges& edges,
+                               const std::optional<SelfCollision<Scalar>>& self_collision,
+                               const ColliderSet<Scalar>& colliders) {
+    if (!ops_ || triangles.rows() == 0) return {};
+    return ops_->resolve(*this, {x_start, x_end, v_end, dt, masses, pinned, triangles, edges,
+                                 self_collision, colliders});
+  }
+
+ private:
+  using Input = SurfaceContactInput<Scalar>;
+  using Pair = ElementPair;
+  using Stencil = PairStencil<Scalar>;
+  using Element = typename SurfaceElements<Scalar>::Element;
+  struct Ops {
+    SurfaceContactReport (*resolve)(SurfaceContact&, const Input&);
+  };
+  static SurfaceContactReport resolve_all(SurfaceContact& s, const Input& in) {
+    return s.resolve_impl(in);
+  }
+
+  SurfaceContactReport resolve_impl(const Input& in) {
+    SurfaceContactReport report;
+    e_.setup(in);
+    zones_active_ = false;
+    colliders_ = &in.colliders;
+    if (!e_.any_pairs) return report;
+    const Scalar h = in.self_collision ? in.self_collision->thickness : Scalar(0);
+    const Scalar mu = in.self_collision ? in.self_collision->friction : Scalar(0);
+    for (int round = 0; round < max_rounds; ++round) {
+      report.rounds = round + 1;
+      candidates(h);
+      if (round == 0 && in.self_collision) report.impulses += repel(h, mu);
+      const std::size_t last_hits = round == 0 ? hits_.max_size() : hits_.size();
+      if (!detect()) break;
+      if (round + 1 == max_rounds) {
+        report.resolved = false;
+        break;
+      }
+      // Impulses while they make progress; impact zones once they stop (hits between immobile
+      // points, or a crowd impulses only shuffle).
+      if (!zones_active_ && round < impulse_rounds && hits_.size() < last_hits) {
+        report.impulses += collide(mu);
+        e_.hold_pushed_into_solids(in);
+      } else {
+        report.zone_points = zones(in);
+      }
+    }
+    // Write back: positions, and velocities changed by the change of displacement over dt.
+    const int n = e_.n;
+    const Scalar inv_dt = Scalar(1) / in.dt;
+    for (int i = 0; i < n; ++i) {
+      const V3 moved = e_.x1.row(i).transpose() - in.x_end.row(i).transpose();
+      if (moved.isZero(0)) continue;
+      in.x_end.row(i) = e_.x1.row(i);
+      in.v_end.row(i) += inv_dt * moved.transpose();
+    }
+    return report;
+  }
+
+  // Candidate pairs of the current motion x0 -> x1: boxes grown by half the largest distance a
+  // pair is tested at (the thickness, or an obstacle's gap).
+  void candidates(Scalar h) {
+    Scalar grow = std::max(h, e_.self_gap);
+    for (Scalar g : e_.gap) grow = std::max(grow, g);
+    grow /= 2;
+    Scalar extent = 0;
+    tri_boxes_.resize(e_.triangles.size());
+    for (std::size_t t = 0; t < e_.triangles.size(); ++t) {
+      tri_boxes_[t] = e_.swept(e_.triangles[t], 3, grow);
+      extent += (tri_boxes_[t].hi - tri_boxes_[t].lo).maxCoeff();
+    }
+    edge_boxes_.resize(e_.edges.size());
+    for (std::size_t e = 0; e < e_.edges.size(); ++e)
+      edge_boxes_[e] = e_.swept(e_.edges[e], 2, grow);
+    pairs_.clear();
+    const Scalar cell = extent / Scalar(std::max<std::size_t>(1, e_.triangles.size()));
+    hash_.build(tri_boxes_, cell);
+    for (std::size_t v = 0; v < e_.points.size(); ++v) {
+      const Element& pe = e_.points[v];
+      const auto box = e_.swept(pe, 1, grow);
+      hash_.query(box, [&](int t) {
+        const Element& te = e_.triangles[std::size_t(t)];
+        if (e_.pair_gap(pe.owner, te.owner) < 0) return;
+        const int i = pe.p[0];
+        if (i == te.p[0] || i == te.p[1] || i == te.p[2]) return;
+        pairs_.push_back({0, int(v), t});
+      });
+    }
+    hash_.build(edge_boxes_, cell);
+    for (std::size_t a = 0; a < e_.edges.size(); ++a) {
+      const Element& ea = e_.edges[a];
+      hash_.query(edge_boxes_[a], [&](int b) {
+        if (b <= int(a)) return;
+        const Element& eb = e_.edges[std::size_t(b)];
+        if (e_.pair_gap(ea.owner, eb.owner) < 0) return;
+        for (int i : {ea.p[0], ea.p[1]})
+          if (i == eb.p[0] || i == eb.p[1]) return;
+        pairs_.push_back({1, int(a), b});
+      });
+    }
+  }
+
+  // Applies a change lambda of the relative displacement along n to the stencil's points, and
+  // Coulomb friction on the relative tangential displacement (at most mu * lambda). Returns
+  // false when every point is immobile.
+  bool impulse(const Stencil& s, Scalar lambda, Scalar mu) {
+    // den = sum a_k^2 w_k, kept at least max |a_k| w_k / 2 so that no point moves more than
+    // 2 lambda: a free corner of small weight beside immobile ones would otherwise take a
+    // displacement of lambda / a_k (the impulse then cancels only part of the approach; the next
+    // round or an impact zone does the rest).
+    Scalar den = 0, lever = 0;
+    for (int k = 0; k < 4; ++k) {
+      const Scalar a = s.a[std::size_t(k)], w = e_.w(s.p[std::size_t(k)]);
+      den += a * a * w;
+      lever = std::max(lever, std::abs(a) * w);
+    }
+    if (!(den > 0)) return false;
+    den = std::max(den, lever / 2);
+    V3 rel = V3::Zero();
+    for (int k = 0; k < 4; ++k) rel += s.a[std::size_t(k)] * e_.d(s.p[std::size_t(k)]);
+    V3 change = lambda * s.n;
+    if (mu > 0) {
+      const V3 t = rel - rel.dot(s.n) * s.n;
+      const Scalar len = t.norm();
+      if (len > 0) change -= std::min(len, mu * lambda) / len * t;
+    }
+    for (int k = 0; k < 4; ++k) {
+      const int i = s.p[std::size_t(k)];
+      e_.x1.row(i) += (s.a[std::size_t(k)] * e_.w(i) / den) * change.transpose();
+    }
+    return true;
+  }
+
+  // 1. Repulsion: pairs closer than h at the end of the step that came closer over it.
+  int repel(Scalar h, Scalar mu) {
+    int count = 0;
+    for (const Pair& q : pairs_) {
+      if (!cloth_pair(q)) continue;
+      const Stencil s = e_.stencil(q, [&](int i) { return e_.p1(i); });
+      if (!(s.distance < h)) continue;
+      Scalar approach = 0;  // relative displacement along n over the step (< 0: closer)
+      for (int k = 0; k < 4; ++k)
+        approach += s.a[std::size_t(k)] * e_.d(s.p[std::size_t(k)]).dot(s.n);
+      // Cancel the approach, up to the missing distance, and push a pair within half the
+      // thickness a tenth of the way back out.
+      const Scalar push = std::min(std::max(-approach, Scalar(0)), h - s.distance) +
+                          (s.distance < h / 2 ? (h - s.distance) / 10 : Scalar(0));
+      if (push > 0 && impulse(s, push, mu)) ++count;
+    }
+    return count;
+  }
+  [[nodiscard]] bool cloth_pair(const Pair& q) const {
+    return q.kind == 0
+               ? e_.points[std::size_t(q.a)].owner < 0 && e_.triangles[std::size_t(q.b)].owner < 0
+               : e_.edges[std::size_t(q.a)].owner < 0 && e_.edges[std::size_t(q.b)].owner < 0;
+  }
+
+  // 2. Continuous detection of every candidate; the hits go to hits_ (pair, time of impact).
+  bool detect() {
+    hits_.clear();
+    for (const Pair& q : pairs_) {
+      Scalar gap = 0;
+      CcdResult<Scalar> r;
+      if (q.kind == 0) {
+        const Element& pe = e_.points[std::size_t(q.a)];
+        const Element& te = e_.triangles[std::size_t(q.b)];
+        gap = e_.pair_gap(pe.owner, te.owner);
+        const int i = pe.p[0], a = te.p[0], b = te.p[1], c = te.p[2];
+        if (same_zone(i, a, b, c)) continue;
+        gap = start_gap(q, gap);
+        r = point_triangle_ccd<Scalar>(e_.p0(i), e_.p0(a), e_.p0(b), e_.p0(c), e_.d(i), e_.d(a),
+                                       e_.d(b), e_.d(c), gap);
+      } else {
+        const Element& ea = e_.edges[std::size_t(q.a)];
+        const Element& eb = e_.edges[std::size_t(q.b)];
+        gap = e_.pair_gap(ea.owner, eb.owner);
+        const int a0 = ea.p[0], a1 = ea.p[1], b0 = eb.p[0], b1 = eb.p[1];
+        if (same_zone(a0, a1, b0, b1)) continue;
+        gap = start_gap(q, gap) + ea.radius + eb.radius;
+        r = edge_edge_ccd<Scalar>(e_.p0(a0), e_.p0(a1), e_.p0(b0), e_.p0(b1), e_.d(a0), e_.d(a1),
+                                  e_.d(b0), e_.d(b1), gap);
+      }
+      if (r.hit) hits_.push_back({q, r.toi});
+    }
+    return !hits_.empty();
+  }
+  // A pair that starts closer than its gap (a user's start state) keeps at least half its start
+  // distance instead.
+  Scalar start_gap(const Pair& q, Scalar gap) const {
+    const Stencil s = e_.stencil(q, [&](int i) { return e_.p0(i); });
+    return std::min(gap, s.distance / 2);
+  }
+  bool same_zone(int a, int b, int c, int e) {
+    if (!zones_active_) return false;
+    const int z = zones_.zone_of(a);
+    return z >= 0 && zones_.zone_of(b) == z && zones_.zone_of(c) == z && zones_.zone_of(e) == z;
+  }
+
+  // 2'. One round of inelastic impulses on the hits: each cancels its pair's approach along the
+  // normal at the time of impact.
+  int collide(Scalar mu) {
+    int count = 0;
+    for (const Hit& hit : hits_) {
+      const Scalar toi = hit.toi;
+      const Stencil s = e_.stencil(hit.pair, [&](int i) { return V3(e_.p0(i) + toi * e_.d(i)); });
+      Scalar approach = 0;
+      for (int k = 0; k < 4; ++k)
+        approach += s.a[std::size_t(k)] * e_.d(s.p[std::size_t(k)]).dot(s.n);
+      if (!(approach < 0)) approach = -std::numeric_limits<Scalar>::epsilon();
+      // Friction between two cloth parts uses the self-collision coefficient; against an
+      // obstacle's edges, the collider's kinetic one.
+      const Scalar friction = cloth_pair(hit.pair) ? mu : obstacle_friction(hit.pair);
+      if (impulse(s, -approach * Scalar(1.01), friction)) ++count;
+    }
+    return count;
+  }
+  // The kinetic friction of the collider on the pair's obstacle side.
+  [[nodiscard]] Scalar obstacle_friction(const Pair& q) const {
+    const int owner =
+        q.kind == 0
+            ? std::max(e_.points[std::size_t(q.a)].owner, e_.triangles[std::size_t(q.b)].owner)
+            : std::max(e_.edges[std::size_t(q.a)].owner, e_.edges[std::size_t(q.b)].owner);
+    return owner >= 0 ? (*colliders_)[owner].kinetic_friction() : Scalar(0);
+  }
+
+  // 3. Rigid impact zones: the hits' points join zones, and each zone moves rigidly.
+  int zones(const Input& in) {
+    if (!zones_active_) {
+      zones_.reset(int(e_.x0.rows()));
+      zones_active_ = true;
+    }
+    for (const Hit& hit : hits_) {
+      const Stencil s = e_.stencil(hit.pair, [&](int i) { return e_.p0(i); });
+      bool immobile = false;
+      for (int i : s.p) immobile = immobile || e_.w(i) == 0;
+      zones_.add(s.p, 4, immobile);
+    }
+    zones_.groups(members_, starts_);
+    int moved = 0;
+    velocity_scratch_.resize(e_.x1.rows(), 3);
+    for (std::size_t z = 0; z + 1 < starts_.size(); ++z) {
+      const int* m = members_.data() + starts_[z];
+      const int count = starts_[z + 1] - starts_[z];
+      // A zone that holds an obstacle's element moves with that obstacle; one that holds a
+      // pinned point (or a point held by a solid), with that point's displacement; any other
+      // rigidly. Pinned points keep their prescribed motion.
+      int obstacle = -1, anchor = -1;
+      for (int k = 0; k < count; ++k) {
+        const int i = m[k];
+        if (e_.owner[std::size_t(i)] >= 0)
+          obstacle = e_.owner[std::size_t(i)];
+        else if (e_.w(i) == 0 && (anchor < 0 || e_.pinned[std::size_t(i)]))
+          anchor = i;
+      }
+      const auto movable = [&](int i) {
+        return e_.owner[std::size_t(i)] < 0 && !e_.pinned[std::size_t(i)];
+      };
+      if (obstacle >= 0) {
+        // x1 = R_e R_s^T (x0 - t_s) + t_e.
+        const Collider<Scalar>& c = in.colliders[obstacle];
+        const M3 rel = c.end_rotation() * c.rotation().transpose();
+        for (int k = 0; k < count; ++k)
+          if (movable(m[k]))
+            e_.x1.row(m[k]) =
+                (rel * (e_.p0(m[k]) - c.translation()) + c.end_translation()).transpose();
+      } else if (anchor >= 0) {
+        // A pinned point carries the zone along its prescribed displacement; a point held by a
+        // solid keeps it where it started.
+        const V3 shift = e_.pinned[std::size_t(anchor)] ? e_.d(anchor) : V3::Zero();
+        for (int k = 0; k < count; ++k)
+          if (movable(m[k])) e_.x1.row(m[k]) = (e_.p0(m[k]) + shift).transpose();
+      } else {
+        rigid_zone_motion<Scalar>(m, count, false, in.masses, e_.x0, in.dt, e_.x1,
+                                  velocity_scratch_);
+        // A rigid motion that would take a point into a solid: the zone stays where it started.
+        bool blocked = false;
+        for (int k = 0; k < count && !blocked; ++k) blocked = e_.inside_solid(in.colliders, m[k]);
+        if (blocked)
+          for (int k = 0; k < count; ++k) e_.x1.row(m[k]) = e_.x0.row(m[k]);
+      }
+      moved += count;
+    }
+    return moved;
+  }
+
+  struct Hit {
+    Pair pair;
+    Scalar toi;
+  };
+
+  const Ops* ops_ = nullptr;
+  const ColliderSet<Scalar>* colliders_ = nullptr;  // the last resolve()'s
+  bool zones_active_ = false;
+  SurfaceElements<Scalar> e_;
+  Points<Scalar> velocity_scratch_;
+  std::vector<AlignedBox3<Scalar>> tri_boxes_, edge_boxes_;
+  BoxHash<Scalar> hash_;
+  std::vector<Pair> pairs_;
+  std::vector<Hit> hits_;
+  ImpactZones zones_;
+  std::vector<int> members_, starts_;
+};
+
+}  // namespace massspring::contact

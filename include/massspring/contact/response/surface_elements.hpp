@@ -1,0 +1,329 @@
+#pragma once
+/// @file
+/// @brief SurfaceElements: the work state of surface contact (contact/response/
+/// surface_contact.hpp) over one step: the cloth's points, then the obstacles' (capsule axis
+/// ends, box corners, mesh vertices) at the start and end of the step, their inverse masses, and
+/// the elements that collide: points, edges and triangles. Also the closest-point geometry of a
+/// point-triangle or edge-edge pair (PairStencil).
+///
+/// An obstacle's points have infinite mass (w = 0) and move with their collider from its pose
+/// at the start of the step to the one at its end. A cloth point the colliders' point response
+/// left touching a solid (plane, sphere, capsule, box) is held too (w = 0), so that no impulse
+/// pushes it back inside; the solid already gave it its contact and friction.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/distance/edge_edge.hpp"
+#include "massspring/contact/distance/point_triangle.hpp"
+#include "massspring/contact/self_collision.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring::contact {
+
+/// @brief What surface contact is given for one step (see SurfaceContact::resolve()).
+template <class Scalar>
+struct SurfaceContactInput {
+  const Points<Scalar>& x_start;
+  Points<Scalar>& x_end;
+  Points<Scalar>& v_end;
+  Scalar dt;
+  const Vector<Scalar>& masses;
+  const std::vector<int>& pinned;
+  const Triangles& triangles;
+  const Edges& edges;
+  const std::optional<SelfCollision<Scalar>>& self_collision;
+  const ColliderSet<Scalar>& colliders;
+};
+
+/// @brief The pair's points p and barycentric weights a (+ on the first element, - on the
+/// second), its closest distance [m] (less the radii of capsule axes) and unit normal n (from
+/// the second element to the first).
+template <class Scalar>
+struct PairStencil {
+  std::array<int, 4> p;
+  std::array<Scalar, 4> a;
+  Vector3<Scalar> n;
+  Scalar distance;
+};
+
+/// @brief A candidate pair: kind 0 point-triangle (a: point element, b: triangle element),
+/// kind 1 edge-edge.
+struct ElementPair {
+  int kind, a, b;
+};
+
+/// @brief The work state (see the file comment); its arrays keep their capacity.
+template <class Scalar>
+struct SurfaceElements {
+  using V3 = Vector3<Scalar>;
+  using Stencil = PairStencil<Scalar>;
+  using Pair = ElementPair;
+
+  /// An element: up to three point indices into the augmented arrays; owner -1 for the cloth, or
+  /// the collider's index; radius: a capsule axis's.
+  struct Element {
+    std::array<int, 3> p;
+    int owner;
+    Scalar radius;
+  };
+
+  // Augmented arrays: the cloth's points, then the obstacles' (infinite mass); elements.
+  void setup(const SurfaceContactInput<Scalar>& in) {
+    n = int(in.x_start.rows());
+    int extra = 0;
+    for (const auto& c : in.colliders) extra += obstacle_points(c);
+    const int total = n + extra;
+    x0.resize(total, 3);
+    x1.resize(total, 3);
+    x0.topRows(n) = in.x_start;
+    x1.topRows(n) = in.x_end;
+    w.resize(total);
+    for (int i = 0; i < n; ++i) w(i) = Scalar(1) / in.masses(i);
+    pinned.assign(std::size_t(total), 0);
+    for (int i : in.pinned) {
+      w(i) = 0;
+      pinned[std::size_t(i)] = 1;
+    }
+    w.tail(extra).setZero();
+    hold_solid_contacts(in);
+    owner.assign(std::size_t(total), -1);
+    points.clear();
+    edges.clear();
+    triangles.clear();
+    // Cloth: the corners of the triangles (each once), the edges, the triangles.
+    mark.assign(std::size_t(n), 0);
+    for (Eigen::Index t = 0; t < in.triangles.rows(); ++t) {
+      triangles.push_back({{in.triangles(t, 0), in.triangles(t, 1), in.triangles(t, 2)}, -1, 0});
+      for (int k = 0; k < 3; ++k) mark[std::size_t(in.triangles(t, k))] = 1;
+    }
+    for (int i = 0; i < n; ++i)
+      if (mark[std::size_t(i)]) points.push_back({{i, -1, -1}, -1, 0});
+    for (Eigen::Index e = 0; e < in.edges.rows(); ++e)
+      edges.push_back({{in.edges(e, 0), in.edges(e, 1), -1}, -1, 0});
+    const std::size_t cloth_edges = edges.size();
+    // Obstacles.
+    int next = n;
+    gap.assign(std::size_t(in.colliders.size()), 0);
+    for (int ci = 0; ci < in.colliders.size(); ++ci)
+      next = add_obstacle(in.colliders[ci], ci, next, in.self_collision);
+    any_pairs = in.self_collision.has_value() || edges.size() > cloth_edges;
+    self = in.self_collision.has_value();
+    self_gap = in.self_collision ? in.self_collision->thickness / 10 : Scalar(0);
+  }
+
+  // A point the colliders' point response left touching a solid (a plane, sphere, capsule or
+  // box) is held by it in this pass: infinite mass, so that no impulse pushes it back inside;
+  // the solid already gave it its contact and friction.
+  void hold_solid_contacts(const SurfaceContactInput<Scalar>& in) {
+    if (in.colliders.empty()) return;
+    ColliderContact<Scalar> k;
+    for (int i = 0; i < n; ++i) {
+      if (w(i) == 0) continue;
+      const V3 xs = p0(i), xe = p1(i);
+      if (!in.colliders.near(xs, xe)) continue;
+      const Scalar slop =
+          16 * std::numeric_limits<Scalar>::epsilon() * (1 + xe.cwiseAbs().maxCoeff());
+      for (const auto& c : in.colliders)
+        if (c.shape() != ColliderShape::Mesh && c.contact(xs, xe, slop + c.slop(), k)) {
+          w(i) = 0;
+          break;
+        }
+    }
+  }
+
+  // True when point i's end position is inside a solid collider (a plane, sphere, capsule or
+  // box) by more than rounding.
+  bool inside_solid(const ColliderSet<Scalar>& colliders, int i) const {
+    const V3 xs = p0(i), xe = p1(i);
+    if (!colliders.near(xs, xe)) return false;
+    ColliderContact<Scalar> k;
+    for (const auto& c : colliders)
+      if (c.shape() != ColliderShape::Mesh && c.contact(xs, xe, Scalar(0), k) && k.depth > 0)
+        return true;
+    return false;
+  }
+  // A point an impulse pushed into a solid gets the colliders' position response (with their
+  // friction) and is held from then on, like the points the response left touching.
+  void hold_pushed_into_solids(const SurfaceContactInput<Scalar>& in) {
+    if (in.colliders.empty()) return;
+    for (int i = 0; i < n; ++i) {
+      if (w(i) == 0 || !inside_solid(in.colliders, i)) continue;
+      in.colliders.project(x0.row(i).data(), x1.row(i).data(), in.dt);
+      w(i) = 0;
+    }
+  }
+
+  static int obstacle_points(const Collider<Scalar>& c) {
+    switch (c.shape()) {
+      case ColliderShape::Capsule:
+        return 2;
+      case ColliderShape::Box:
+        return 8;
+      case ColliderShape::Mesh:
+        return int(c.triangle_mesh()->vertices().rows());
+      default:
+        return 0;
+    }
+  }
+
+  // Appends collider ci's points (start and end of the step) and elements; returns the next
+  // free point index.
+  int add_obstacle(const Collider<Scalar>& c, int ci, int next,
+                   const std::optional<SelfCollision<Scalar>>& self_collision) {
+    const auto place = [&](int i, const V3& local) {
+      x0.row(i) = (c.rotation() * local + c.translation()).transpose();
+      x1.row(i) = (c.end_rotation() * local + c.end_translation()).transpose();
+      owner[std::size_t(i)] = ci;
+    };
+    // The gap kept from an obstacle's edges and faces [m]: half its radius and thickness, and at
+    // least a quarter of the self-collision thickness (or 0.25 mm without it) for an edge with
+    // neither.
+    Scalar keep = (c.radius() * Scalar(c.shape() == ColliderShape::Capsule) + c.thickness()) / 2;
+    if (!(keep > 0)) keep = self_collision ? self_collision->thickness / 4 : Scalar(2.5e-4);
+    gap[std::size_t(ci)] = keep;
+    switch (c.shape()) {
+      case ColliderShape::Capsule:
+        place(next, -c.axis());
+        place(next + 1, c.axis());
+        edges.push_back({{next, next + 1, -1}, ci, c.radius()});
+        return next + 2;
+      case ColliderShape::Box: {
+        for (int k = 0; k < 8; ++k)
+          place(next + k,
+                V3((k & 1) ? c.axis()(0) : -c.axis()(0), (k & 2) ? c.axis()(1) : -c.axis()(1),
+                   (k & 4) ? c.axis()(2) : -c.axis()(2)));
+        for (int k = 0; k < 8; ++k)
+          for (int bit : {1, 2, 4})
+            if (!(k & bit)) edges.push_back({{next + k, next + (k | bit), -1}, ci, 0});
+        return next + 8;
+      }
+      case ColliderShape::Mesh: {
+        const auto& mesh = *c.triangle_mesh();
+        const int m = int(mesh.vertices().rows());
+        for (int k = 0; k < m; ++k) {
+          place(next + k, mesh.vertices().row(k).transpose());
+          points.push_back({{next + k, -1, -1}, ci, 0});
+        }
+        const Triangles& f = mesh.triangles();
+        for (Eigen::Index t = 0; t < f.rows(); ++t) {
+          triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci, 0});
+          for (int k = 0; k < 3; ++k) {
+            const int a = f(t, k), b = f(t, (k + 1) % 3);
+            if (a < b) edges.push_back({{next + a, next + b, -1}, ci, 0});
+            // The other side of an interior edge adds it once (a > b there); a boundary edge
+            // whose only triangle lists it as a > b is added below.
+          }
+        }
+        for (Eigen::Index t = 0; t < f.rows(); ++t)
+          for (int k = 0; k < 3; ++k) {
+            const int a = f(t, k), b = f(t, (k + 1) % 3);
+            if (a > b && !mesh_has_directed(f, b, a))
+              edges.push_back({{next + b, next + a, -1}, ci, 0});
+          }
+        return next + m;
+      }
+      default:
+        return next;
+    }
+  }
+  static bool mesh_has_directed(const Triangles& f, int a, int b) {
+    for (Eigen::Index t = 0; t < f.rows(); ++t)
+      for (int k = 0; k < 3; ++k)
+        if (f(t, k) == a && f(t, (k + 1) % 3) == b) return true;
+    return false;
+  }
+
+  // The gap a pair keeps [m] (by the owners of its two elements) and whether it is tested.
+  [[nodiscard]] Scalar pair_gap(int owner_a, int owner_b) const {
+    if (owner_a >= 0 && owner_b >= 0) return -1;  // obstacle-obstacle: never
+    if (owner_a < 0 && owner_b < 0) return self ? self_gap : Scalar(-1);
+    return gap[std::size_t(std::max(owner_a, owner_b))];
+  }
+
+  V3 p0(int i) const { return x0.row(i).transpose(); }
+  V3 p1(int i) const { return x1.row(i).transpose(); }
+  V3 d(int i) const { return (x1.row(i) - x0.row(i)).transpose(); }
+
+  AlignedBox3<Scalar> swept(const Element& e, int count, Scalar grow) const {
+    AlignedBox3<Scalar> b{p0(e.p[0]), p0(e.p[0])};
+    for (int k = 0; k < count; ++k) {
+      b.lo = b.lo.cwiseMin(p0(e.p[std::size_t(k)])).cwiseMin(p1(e.p[std::size_t(k)]));
+      b.hi = b.hi.cwiseMax(p0(e.p[std::size_t(k)])).cwiseMax(p1(e.p[std::size_t(k)]));
+    }
+    b.lo.array() -= grow + e.radius;
+    b.hi.array() += grow + e.radius;
+    return b;
+  }
+
+  template <class Pos>
+  Stencil stencil(const Pair& q, Pos&& x) const {
+    Stencil s;
+    if (q.kind == 0) {
+      const Element& pe = points[std::size_t(q.a)];
+      const Element& te = triangles[std::size_t(q.b)];
+      s.p = {pe.p[0], te.p[0], te.p[1], te.p[2]};
+      const V3 xp = x(s.p[0]), xa = x(s.p[1]), xb = x(s.p[2]), xc = x(s.p[3]);
+      const V3 c = closest_point_on_triangle<Scalar>(xp, xa, xb, xc);
+      const std::array<Scalar, 3> bary = barycentric(c, xa, xb, xc);
+      s.a = {1, -bary[0], -bary[1], -bary[2]};
+      const V3 diff = xp - c;
+      s.distance = diff.norm();
+      s.n = s.distance > 0 ? V3(diff / s.distance) : triangle_normal(xa, xb, xc);
+    } else {
+      const Element& ea = edges[std::size_t(q.a)];
+      const Element& eb = edges[std::size_t(q.b)];
+      s.p = {ea.p[0], ea.p[1], eb.p[0], eb.p[1]};
+      const V3 a0 = x(s.p[0]), a1 = x(s.p[1]), b0 = x(s.p[2]), b1 = x(s.p[3]);
+      const auto cp = edge_edge_distance<Scalar>(a0, a1, b0, b1);
+      s.a = {1 - cp.s, cp.s, -(1 - cp.t), -cp.t};
+      const V3 diff = (a0 + cp.s * (a1 - a0)) - (b0 + cp.t * (b1 - b0));
+      s.distance = std::sqrt(cp.squared_distance);
+      s.n = s.distance > 0 ? V3(diff / s.distance) : edge_normal(a1 - a0, b1 - b0);
+      s.distance -= ea.radius + eb.radius;
+    }
+    return s;
+  }
+  static std::array<Scalar, 3> barycentric(const V3& c, const V3& a, const V3& b, const V3& cc) {
+    const V3 v0 = b - a, v1 = cc - a, v2 = c - a;
+    const Scalar d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1);
+    const Scalar d20 = v2.dot(v0), d21 = v2.dot(v1);
+    const Scalar den = d00 * d11 - d01 * d01;
+    if (!(den > 0)) return {1, 0, 0};
+    Scalar v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+    v = std::clamp(v, Scalar(0), Scalar(1));
+    w = std::clamp(w, Scalar(0), Scalar(1) - v);
+    return {1 - v - w, v, w};
+  }
+  static V3 triangle_normal(const V3& a, const V3& b, const V3& c) {
+    const V3 n = (b - a).cross(c - a);
+    const Scalar len = n.norm();
+    return len > 0 ? V3(n / len) : V3::UnitZ();
+  }
+  static V3 edge_normal(const V3& u, const V3& v) {
+    V3 n = u.cross(v);
+    if (!(n.norm() > 0)) n = u.unitOrthogonal();
+    return n.normalized();
+  }
+
+  int n = 0;               // cloth points; obstacle points follow
+  bool self = false;       // self-collision on
+  Scalar self_gap = 0;     // the gap two cloth elements keep [m]
+  bool any_pairs = false;  // anything to test
+  Points<Scalar> x0, x1;   // start and end positions, cloth then obstacles
+  Vector<Scalar> w;        // inverse masses [1/kg]; 0: immobile
+  std::vector<int> owner;  // -1: cloth; else the collider's index
+  std::vector<char> mark, pinned;
+  std::vector<Scalar> gap;  // per collider [m]
+  std::vector<Element> points, edges, triangles;
+};
+
+}  // namespace massspring::contact

@@ -1,0 +1,62 @@
+#pragma once
+/// @file
+/// @brief commit_step(): the end of every integrator's step, written once.
+
+#include <Eigen/Core>
+#include <cmath>
+
+#include "massspring/contact/collision_handler.hpp"
+#include "massspring/integrators/step_report.hpp"
+
+namespace massspring::detail {
+
+/// @brief Ends a step whose proposed end state is (x_end, v_end), #points by 3, from the state
+/// the system holds (the start of the step), in this order:
+/// 1. pinned points at their targets, with the velocity (target - x_start) / dt;
+/// 2. the collision response: the system's handler, the colliders' point response
+///    (contact/collision_handler.hpp), then surface contact (contact/response/
+///    surface_contact.hpp: no edge crosses a triangle of the cloth or an obstacle's edge);
+/// 3. pinned points at their targets again (an impact zone may have moved one);
+/// 4. when every value is finite and the contact was resolved: the end state is written to the
+///    system (x_end and v_end are swapped in, so they hold the start state afterwards) and the
+///    colliders take their end-of-step pose; otherwise the system is left as it was.
+/// Sets report.finite and the contact fields. Allocates nothing once the contact's work arrays
+/// have grown.
+/// `collider_friction` false: the colliders act as frictionless (FastMassSpring's contact term
+/// applied their friction inside the iteration).
+template <class System>
+void commit_step(System& system, typename System::PointsType& x_end,
+                 typename System::PointsType& v_end, typename System::Scalar dt, StepReport& report,
+                 bool collider_friction = true) {
+  const auto& x0 = system.positions();
+  const auto& pinned = system.pinned();
+  const auto pin = [&] {
+    for (std::size_t r = 0; r < pinned.size(); ++r) {
+      const int i = pinned[r];
+      x_end.row(i) = system.pin_targets().row(Eigen::Index(r));
+      v_end.row(i) = (x_end.row(i) - x0.row(i)) / dt;
+    }
+  };
+  pin();
+  if (system.has_collision_response()) {
+    contact::handle_collisions(system, x0, system.velocities(), x_end, v_end, dt,
+                               collider_friction);
+    const contact::SurfaceContactReport r = system.surface_contact().resolve(
+        x0, x_end, v_end, dt, system.masses(), pinned, system.surface(), system.surface_edges(),
+        system.self_collision(), system.colliders());
+    report.contact_impulses = r.impulses;
+    report.contact_zone_points = r.zone_points;
+    report.contact_resolved = r.resolved;
+    pin();
+  }
+  // One vectorised pass: a sum is finite only when every term is (a sum of finite values can
+  // overflow only when they are near 1e308, which is divergence anyway).
+  report.finite = std::isfinite(x_end.sum() + v_end.sum());
+  if (report.finite && report.contact_resolved) {
+    system.positions().swap(x_end);
+    system.velocities().swap(v_end);
+    system.colliders().end_step();
+  }
+}
+
+}  // namespace massspring::detail

@@ -1,0 +1,254 @@
+// contact/response/surface_contact.hpp through the integrators' steps: no edge of the cloth
+// crosses one of its triangles, and no obstacle's edge crosses the cloth, at any step end. The
+// oracle is tests/support/intersections.hpp (exact predicates, written apart from the library's
+// detection). Each scene is also run without the surface contact it tests, to show that it
+// crosses there: a scene that never crosses would test nothing.
+#include <doctest/doctest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <massspring/contact/response/surface_contact.hpp>
+#include <massspring/forces/gravity.hpp>
+#include <massspring/integrators/backward_euler.hpp>
+#include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/integrators/symplectic_euler.hpp>
+#include <massspring/scene/cloth.hpp>
+#include <massspring/scene/contact_recipes.hpp>
+#include <massspring/scene/make_system.hpp>
+#include <massspring/system/mass_spring_system.hpp>
+#include <optional>
+#include <type_traits>
+#include <vector>
+
+#include "support/intersections.hpp"
+
+namespace {
+
+using System = massspring::MassSpringSystem<double>;
+using massspring::Points;
+using massspring::StepReport;
+using massspring::Triangles;
+using massspring::contact::SelfCollision;
+
+System surface_system(const massspring::SceneDescription<double>& scene) {
+  System s = massspring::make_system<System>(scene);
+  s.add_force(massspring::Gravity<double>({0, -9.81, 0}));
+  REQUIRE(s.surface().rows() > 0);
+  return s;
+}
+
+// Steps `steps` times; the largest count of edge-triangle crossings seen at a step end (and
+// the step reports all ok).
+struct Run {
+  int max_crossings = 0;
+  long impulses = 0;
+  long zone_points = 0;
+  bool all_ok = true;
+  double min_height = 0;  // the lowest y at the end [m]
+};
+template <class Stepper>
+Run run(System& s, Stepper& stepper, int steps, const Eigen::Vector3d* rod = nullptr) {
+  Run r;
+  const massspring::Edges edges = massspring::test::triangle_edges(s.surface());
+  for (int k = 0; k < steps; ++k) {
+    const StepReport report = stepper.step(s);
+    r.all_ok = r.all_ok && report.ok();
+    r.impulses += report.contact_impulses;
+    r.zone_points += report.contact_zone_points;
+    int c = massspring::test::count_crossings(s.positions(), s.surface(), edges);
+    if (rod)
+      c += massspring::test::count_segment_crossings(s.positions(), s.surface(), rod[0], rod[1]);
+    r.max_crossings = std::max(r.max_crossings, c);
+  }
+  return r;
+}
+
+double total_energy_free(const System& s) {
+  double e = 0;
+  for (Eigen::Index i = 0; i < s.velocities().rows(); ++i)
+    e += 0.5 * s.masses()(i) * s.velocities().row(i).squaredNorm();
+  return e;
+}
+
+}  // namespace
+
+namespace {
+
+// The ribbon of 9 x 61 points over 0.24 m x 1.8 m (3 cm spacing), held upright with a wave of
+// 2 cm across its plane, its lower end 5 cm above the floor: it falls end-first and piles up.
+// No bending springs, so it folds sharply; without self-collision it passes through itself.
+massspring::SceneDescription<double> wavy_ribbon() {
+  massspring::ClothOptions o;
+  o.columns = 9;
+  o.rows = 61;
+  o.width = 0.24;
+  o.height = 1.8;
+  o.shear = massspring::ClothShear::One;
+  o.pins = massspring::ClothPins::None;
+  o.plane = massspring::ClothPlane::Vertical;
+  massspring::SceneDescription<double> d = massspring::make_cloth(o);
+  for (Eigen::Index i = 0; i < d.vertices.rows(); ++i) {
+    d.vertices(i, 1) += 1.85;
+    d.vertices(i, 2) += 0.02 * std::sin(7.0 * d.vertices(i, 1));
+  }
+  d.colliders = {massspring::detail::contact_floor()};
+  return d;
+}
+
+template <class Stepper>
+Run ribbon_run(bool self, int steps, double dt, int impulse_rounds = -1) {
+  System s = surface_system(wavy_ribbon());
+  if (self) s.set_self_collision(SelfCollision<double>{});
+  if (impulse_rounds >= 0) s.surface_contact().impulse_rounds = impulse_rounds;
+  Stepper stepper;
+  if constexpr (std::is_same_v<Stepper, massspring::FastMassSpring<System>>)
+    stepper.options.iterations = 10;
+  stepper.precompute(s, dt);
+  Run r = run(s, stepper, steps);
+  r.min_height = s.positions().col(1).minCoeff();
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("surface contact: a ribbon piles onto the floor without crossing itself, at dt = 1/30") {
+  using FMS = massspring::FastMassSpring<System>;
+  const double dt = 1.0 / 30;
+  SUBCASE("without self-collision it crosses itself (the scene tests something)") {
+    CHECK(ribbon_run<FMS>(false, 60, dt).max_crossings > 0);
+  }
+  SUBCASE("FastMassSpring: no crossing at any step end, and contact did work") {
+    const Run r = ribbon_run<FMS>(true, 60, dt);
+    CHECK(r.all_ok);
+    CHECK(r.max_crossings == 0);
+    CHECK(r.impulses > 0);
+    CHECK(r.min_height >= 0);  // and no point under the floor
+  }
+  SUBCASE("impact zones alone (no impulse rounds) keep it free of crossings too") {
+    const Run r = ribbon_run<FMS>(true, 60, dt, 0);
+    CHECK(r.all_ok);
+    CHECK(r.max_crossings == 0);
+    CHECK(r.zone_points > 0);
+  }
+  SUBCASE("BackwardEuler: no crossing at any step end") {
+    const Run r = ribbon_run<massspring::BackwardEuler<System>>(true, 20, dt);
+    CHECK(r.all_ok);
+    CHECK(r.max_crossings == 0);
+    CHECK(r.impulses + r.zone_points > 0);
+  }
+}
+
+TEST_CASE("surface contact: SymplecticEuler at its stable step, a cloth dropped onto another") {
+  // Two 9 x 9 cloths of 0.4 m (5 cm spacing): one 2 cm above the floor, one 4 cm above that,
+  // shifted by half a cell. Stable step of the 1000 N/m springs on 2 g points: about 1.4 ms.
+  massspring::SceneDescription<double> upper =
+      massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.06);
+  for (Eigen::Index i = 0; i < upper.vertices.rows(); ++i) upper.vertices(i, 0) += 0.025;
+  massspring::SceneDescription<double> both = massspring::detail::disjoint_union(
+      massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.02), upper);
+  both.colliders = {massspring::detail::contact_floor()};
+  for (const bool self : {false, true}) {
+    CAPTURE(self);
+    System s = surface_system(both);
+    if (self) s.set_self_collision(SelfCollision<double>{});
+    massspring::SymplecticEuler<System> se;
+    se.precompute(s, 1.0 / 2000);
+    const Run r = run(s, se, 300);
+    if (self) {
+      CHECK(r.all_ok);
+      CHECK(r.max_crossings == 0);
+      CHECK(r.impulses > 0);
+    } else {
+      CHECK(r.max_crossings > 0);
+    }
+  }
+}
+
+TEST_CASE("surface contact: a cloth dropped on a 1 cm rod hangs on it at dt = 1/30") {
+  const double dt = 1.0 / 30;
+  const massspring::SceneDescription<double> scene = massspring::clothesline_scene();
+  const Eigen::Vector3d rod[2] = {scene.colliders[1].a, scene.colliders[1].b};
+  // Hanging: some of the cloth above the rod's top (y = 1.01), all of it above y = 0.3.
+  const auto hanging = [](const System& s) {
+    return s.positions().col(1).maxCoeff() > 1.01 && s.positions().col(1).minCoeff() > 0.3;
+  };
+  SUBCASE("without a surface, the rod passes between the points") {
+    System s = surface_system(scene);
+    s.set_surface(Triangles(0, 3));
+    massspring::FastMassSpring<System> fms;
+    fms.options.iterations = 10;
+    fms.precompute(s, dt);
+    for (int k = 0; k < 30; ++k) fms.step(s);
+    CHECK(s.positions().col(1).maxCoeff() < 0.5);
+  }
+  SUBCASE("with it (and self-collision), nothing crosses and the cloth hangs on the rod") {
+    System s = surface_system(scene);
+    s.set_self_collision(SelfCollision<double>{});
+    massspring::FastMassSpring<System> fms;
+    fms.options.iterations = 10;
+    fms.precompute(s, dt);
+    const Run r = run(s, fms, 30, rod);
+    CHECK(r.all_ok);
+    CHECK(r.max_crossings == 0);
+    CHECK(hanging(s));
+  }
+}
+
+TEST_CASE("surface contact: impulses between cloth parts keep momentum and add no energy") {
+  // Two free triangles, 1 cm apart, that close at 1 m/s each (2 cm per step of 1/50 s): no
+  // gravity, no collider, no spring, so only the surface contact acts on the step.
+  massspring::SceneDescription<double> d;
+  d.vertices.resize(6, 3);
+  d.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+      0.2, 0.2, 0.01, 1.2, 0.3, 0.01, 0.1, 1.1, 0.01;
+  d.faces = {{0, 1, 2}, {3, 4, 5}};
+  d.mass = 1.0;
+  System s = massspring::make_system<System>(d);
+  Eigen::VectorXd masses(6);
+  masses << 1, 2, 3, 1.5, 0.5, 2.5;
+  s.set_masses(masses);
+  REQUIRE(s.surface().rows() == 2);
+  for (int i = 0; i < 3; ++i) s.velocities().row(i) << 0.1, 0, 1;
+  for (int i = 3; i < 6; ++i) s.velocities().row(i) << -0.2, 0.3, -1;
+  s.set_self_collision(SelfCollision<double>{0.004, 0.3});
+  massspring::SymplecticEuler<System> se;
+  se.precompute(s, 1.0 / 50);
+  const auto momentum = [](const System& sys) {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for (Eigen::Index i = 0; i < sys.masses().size(); ++i)
+      p += sys.masses()(i) * sys.velocities().row(i).transpose();
+    return p;
+  };
+  const Eigen::Vector3d p0 = momentum(s);
+  const double e0 = total_energy_free(s);
+  const StepReport r = se.step(s);
+  CHECK(r.ok());
+  CHECK(r.contact_impulses > 0);
+  CHECK((momentum(s) - p0).norm() <= 1e-12 * p0.norm());
+  CHECK(total_energy_free(s) <= e0 * (1 + 1e-12));
+  CHECK(massspring::test::count_crossings(s.positions(), s.surface()) == 0);
+  CHECK(massspring::test::min_separation(s.positions(), s.surface(),
+                                         massspring::test::triangle_edges(s.surface())) > 0);
+}
+
+TEST_CASE("surface contact: a step it cannot resolve is reported and leaves the last good state") {
+  System s = surface_system(massspring::ribbon_pile_scene());
+  s.set_self_collision(SelfCollision<double>{});
+  s.surface_contact().impulse_rounds = 0;
+  s.surface_contact().max_rounds = 1;  // detection once, no room to respond
+  massspring::FastMassSpring<System> fms;
+  fms.options.iterations = 10;
+  fms.precompute(s, 1.0 / 30);
+  bool refused = false;
+  for (int k = 0; k < 45 && !refused; ++k) {
+    const Points<double> x = s.positions(), v = s.velocities();
+    const StepReport r = fms.step(s);
+    if (!r.contact_resolved) {
+      refused = true;
+      CHECK_FALSE(r.ok());
+      CHECK(s.positions() == x);
+      CHECK(s.velocities() == v);
+    }
+  }
+  CHECK(refused);
+}
