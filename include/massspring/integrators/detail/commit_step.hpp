@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "massspring/contact/collision_handler.hpp"
+#include "massspring/contact/response/surface_contact.hpp"
 #include "massspring/integrators/step_report.hpp"
 
 namespace massspring::detail {
