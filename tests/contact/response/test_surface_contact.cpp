@@ -11,13 +11,14 @@
 #include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/backward_euler.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/integrators/forward_euler.hpp>
+#include <massspring/integrators/rk4.hpp>
 #include <massspring/integrators/symplectic_euler.hpp>
 #include <massspring/scene/cloth.hpp>
 #include <massspring/scene/contact_recipes.hpp>
 #include <massspring/scene/make_system.hpp>
 #include <massspring/system/mass_spring_system.hpp>
 #include <optional>
-#include <type_traits>
 #include <vector>
 
 #include "support/intersections.hpp"
@@ -95,14 +96,14 @@ massspring::SceneDescription<double> wavy_ribbon() {
   return d;
 }
 
-template <class Stepper>
-Run ribbon_run(bool self, int steps, double dt, int impulse_rounds = -1) {
+// setup(stepper) sets the stepper's options before its precompute.
+template <class Stepper, class Setup>
+Run ribbon_run(bool self, int steps, double dt, int impulse_rounds, Setup setup) {
   System s = surface_system(wavy_ribbon());
   if (self) s.set_self_collision(SelfCollision<double>{});
   if (impulse_rounds >= 0) s.surface_contact().impulse_rounds = impulse_rounds;
   Stepper stepper;
-  if constexpr (std::is_same_v<Stepper, massspring::FastMassSpring<System>>)
-    stepper.options.iterations = 10;
+  setup(stepper);
   stepper.precompute(s, dt);
   Run r = run(s, stepper, steps);
   r.min_height = s.positions().col(1).minCoeff();
@@ -113,32 +114,39 @@ Run ribbon_run(bool self, int steps, double dt, int impulse_rounds = -1) {
 
 TEST_CASE("surface contact: a ribbon piles onto the floor without crossing itself, at dt = 1/30") {
   using FMS = massspring::FastMassSpring<System>;
+  const auto ten_iterations = [](FMS& fms) { fms.options.iterations = 10; };
   const double dt = 1.0 / 30;
   SUBCASE("without self-collision it crosses itself (the scene tests something)") {
-    CHECK(ribbon_run<FMS>(false, 60, dt).max_crossings > 0);
+    CHECK(ribbon_run<FMS>(false, 60, dt, -1, ten_iterations).max_crossings > 0);
   }
   SUBCASE("FastMassSpring: no crossing at any step end, and contact did work") {
-    const Run r = ribbon_run<FMS>(true, 60, dt);
+    const Run r = ribbon_run<FMS>(true, 60, dt, -1, ten_iterations);
     CHECK(r.all_ok);
     CHECK(r.max_crossings == 0);
     CHECK(r.impulses > 0);
     CHECK(r.min_height >= 0);  // and no point under the floor
   }
   SUBCASE("impact zones alone (no impulse rounds) keep it free of crossings too") {
-    const Run r = ribbon_run<FMS>(true, 60, dt, 0);
+    const Run r = ribbon_run<FMS>(true, 60, dt, 0, ten_iterations);
     CHECK(r.all_ok);
     CHECK(r.max_crossings == 0);
     CHECK(r.zone_points > 0);
   }
-  SUBCASE("BackwardEuler: no crossing at any step end") {
-    const Run r = ribbon_run<massspring::BackwardEuler<System>>(true, 20, dt);
-    CHECK(r.all_ok);
-    CHECK(r.max_crossings == 0);
-    CHECK(r.impulses + r.zone_points > 0);
+  SUBCASE("BackwardEuler, Newton and linearised: no crossing at any step end") {
+    using BE = massspring::BackwardEuler<System>;
+    for (const auto mode :
+         {massspring::BackwardEulerMode::Newton, massspring::BackwardEulerMode::Linearized}) {
+      const Run r = ribbon_run<BE>(true, 20, dt, -1, [&](BE& be) { be.options.mode = mode; });
+      CHECK(r.all_ok);
+      CHECK(r.max_crossings == 0);
+      CHECK(r.impulses + r.zone_points > 0);
+    }
   }
 }
 
-TEST_CASE("surface contact: SymplecticEuler at its stable step, a cloth dropped onto another") {
+TEST_CASE_TEMPLATE(
+    "surface contact: explicit integrators at their stable step, a cloth dropped onto another",
+    Stepper, massspring::SymplecticEuler<System>, massspring::RK4<System>) {
   // Two 9 x 9 cloths of 0.4 m (5 cm spacing): one 2 cm above the floor, one 4 cm above that,
   // shifted by half a cell. Stable step of the 1000 N/m springs on 2 g points: about 1.4 ms.
   massspring::SceneDescription<double> upper =
@@ -151,9 +159,9 @@ TEST_CASE("surface contact: SymplecticEuler at its stable step, a cloth dropped 
     CAPTURE(self);
     System s = surface_system(both);
     if (self) s.set_self_collision(SelfCollision<double>{});
-    massspring::SymplecticEuler<System> se;
-    se.precompute(s, 1.0 / 2000);
-    const Run r = run(s, se, 300);
+    Stepper stepper;
+    stepper.precompute(s, 1.0 / 2000);
+    const Run r = run(s, stepper, 300);
     if (self) {
       CHECK(r.all_ok);
       CHECK(r.max_crossings == 0);
@@ -194,7 +202,9 @@ TEST_CASE("surface contact: a cloth dropped on a 1 cm rod hangs on it at dt = 1/
   }
 }
 
-TEST_CASE("surface contact: impulses between cloth parts keep momentum and add no energy") {
+TEST_CASE_TEMPLATE("surface contact: impulses between cloth parts keep momentum and add no energy",
+                   Stepper, massspring::ForwardEuler<System>, massspring::SymplecticEuler<System>,
+                   massspring::RK4<System>) {
   // Two free triangles, 1 cm apart, that close at 1 m/s each (2 cm per step of 1/50 s): no
   // gravity, no collider, no spring, so only the surface contact acts on the step.
   massspring::SceneDescription<double> d;
@@ -211,8 +221,8 @@ TEST_CASE("surface contact: impulses between cloth parts keep momentum and add n
   for (int i = 0; i < 3; ++i) s.velocities().row(i) << 0.1, 0, 1;
   for (int i = 3; i < 6; ++i) s.velocities().row(i) << -0.2, 0.3, -1;
   s.set_self_collision(SelfCollision<double>{0.004, 0.3});
-  massspring::SymplecticEuler<System> se;
-  se.precompute(s, 1.0 / 50);
+  Stepper stepper;
+  stepper.precompute(s, 1.0 / 50);
   const auto momentum = [](const System& sys) {
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
     for (Eigen::Index i = 0; i < sys.masses().size(); ++i)
@@ -221,7 +231,7 @@ TEST_CASE("surface contact: impulses between cloth parts keep momentum and add n
   };
   const Eigen::Vector3d p0 = momentum(s);
   const double e0 = total_energy_free(s);
-  const StepReport r = se.step(s);
+  const StepReport r = stepper.step(s);
   CHECK(r.ok());
   CHECK(r.contact_impulses > 0);
   CHECK((momentum(s) - p0).norm() <= 1e-12 * p0.norm());

@@ -133,7 +133,12 @@ class SurfaceContact {
     for (int round = 0; round < max_rounds; ++round) {
       report.rounds = round + 1;
       candidates(h);
-      if (round == 0 && in.self_collision) report.impulses += repel(h, mu);
+      // Repulsion moves points: the candidates of the motion it leaves are found again.
+      if (round == 0 && in.self_collision) {
+        const int repelled = repel(h, mu);
+        report.impulses += repelled;
+        if (repelled > 0) candidates(h);
+      }
       const std::size_t last_hits = round == 0 ? hits_.max_size() : hits_.size();
       if (!detect()) break;
       if (round + 1 == max_rounds) {
