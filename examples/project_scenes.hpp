@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "massspring/massspring.hpp"
+#include "massspring/scene/contact_recipes.hpp"
 #include "massspring/scene/recipes.hpp"
 
 namespace massspring::examples {
@@ -130,6 +131,14 @@ inline std::vector<std::pair<std::string, SceneDescription<double>>> project_sce
     ball.thickness = 0.005;
     mesh.colliders = {floor_plane(0.3), ball};
     scenes.emplace_back("mesh", std::move(mesh));
+  }
+  // The contact scenes of scene/contact_recipes.hpp, self-collision on with its defaults
+  // (thickness 4 mm, friction 0.2).
+  for (auto [stem, scene] : {std::pair{"clothesline", clothesline_scene()},
+                             std::pair{"ribbon_pile", ribbon_pile_scene()},
+                             std::pair{"two_cloths", two_cloths_on_ball_scene()}}) {
+    scene.self_collision = contact::SelfCollision<double>{};
+    scenes.emplace_back(stem, std::move(scene));
   }
 
   return scenes;

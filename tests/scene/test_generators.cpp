@@ -330,7 +330,7 @@ TEST_CASE("make_cloth refuses invalid options, naming them") {
 TEST_CASE("project scenes: the counts and settings the project asked for") {
   std::map<std::string, SceneDescription<double>> scenes;
   for (auto& [name, scene] : massspring::examples::project_scenes()) scenes[name] = scene;
-  REQUIRE(scenes.size() == 9);
+  REQUIRE(scenes.size() == 12);
   const auto& chain = scenes.at("chain");
   CHECK(chain.vertices.rows() == 10);
   CHECK(spring_count(chain) == 9);
@@ -357,6 +357,16 @@ TEST_CASE("project scenes: the counts and settings the project asked for") {
   CHECK(curtain.vertices.col(2).isZero(0));  // vertical
   CHECK(curtain.pinned == std::vector<int>{0, 80});
   CHECK_FALSE(curtain.mass.has_value());
+  // The contact scenes: self-collision on, with its defaults.
+  for (const char* name : {"clothesline", "ribbon_pile", "two_cloths"}) {
+    CAPTURE(name);
+    REQUIRE(scenes.at(name).self_collision.has_value());
+    CHECK(scenes.at(name).self_collision->thickness == 0.004);
+    CHECK(scenes.at(name).self_collision->friction == 0.2);
+  }
+  CHECK(scenes.at("clothesline").vertices.rows() == 31 * 31);
+  CHECK(scenes.at("ribbon_pile").vertices.rows() == 9 * 61);
+  CHECK(scenes.at("two_cloths").vertices.rows() == 2 * 21 * 21);
 }
 
 TEST_CASE("the committed examples/scenes are exactly what massspring-make-scenes writes now") {

@@ -19,8 +19,10 @@ namespace massspring::detail {
 ///    surface_contact.hpp: no edge crosses a triangle of the cloth or an obstacle's edge);
 /// 3. pinned points at their targets again (an impact zone may have moved one);
 /// 4. when every value is finite and the contact was resolved: the end state is written to the
-///    system (x_end and v_end are swapped in, so they hold the start state afterwards) and the
-///    colliders take their end-of-step pose; otherwise the system is left as it was.
+///    system and the colliders take their end-of-step pose; otherwise the system is left as it
+///    was. With `swap`, x_end and v_end are swapped in (they hold the start state afterwards);
+///    without, copied (the system's arrays keep their memory, which Python's views of them
+///    need).
 /// Sets report.finite and the contact fields. Allocates nothing once the contact's work arrays
 /// have grown.
 /// `collider_friction` false: the colliders act as frictionless (FastMassSpring's contact term
@@ -54,8 +56,13 @@ void commit_step(System& system, typename System::PointsType& x_end,
   // overflow only when they are near 1e308, which is divergence anyway).
   report.finite = std::isfinite(x_end.sum() + v_end.sum());
   if (report.finite && report.contact_resolved) {
-    system.positions().swap(x_end);
-    system.velocities().swap(v_end);
+    if (swap) {
+      system.positions().swap(x_end);
+      system.velocities().swap(v_end);
+    } else {  // same sizes: no allocation
+      system.positions() = x_end;
+      system.velocities() = v_end;
+    }
     system.colliders().end_step();
   }
 }

@@ -1,0 +1,120 @@
+// What surface contact costs (contact/response/surface_contact.hpp).
+//
+// - LargeDrape/contact:{0,1,2}: one FastMassSpring step (10 plain iterations, dt = 1/30) of the
+//   81 x 81 cloth of scene/contact_recipes.hpp's large_drape_scene (2 m, 1.9 kg, k = 1000 N/m)
+//   from the same state, restored before every step: the cloth after 1 s of falling with
+//   self-collision on, lying on the ball and folding at the floor. contact 0: no collider and no
+//   surface (the springs and gravity only); 1: the floor and the sphere (the colliders' point
+//   response); 2: those and the surface with self-collision (thickness 4 mm, friction 0.2).
+// - BoxHash/grid:N: the broad phase alone on an N x N cloth with one diagonal per cell, each
+//   point moved by a random step of up to half the spacing: building the hash of the triangles'
+//   swept boxes and querying every point's. Time per point should stay about flat as N grows.
+#include <benchmark/benchmark.h>
+
+#include <massspring/contact/broad_phase/box_hash.hpp>
+#include <massspring/contact/self_collision.hpp>
+#include <massspring/forces/gravity.hpp>
+#include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/scene/cloth.hpp>
+#include <massspring/scene/contact_recipes.hpp>
+#include <massspring/scene/make_system.hpp>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using System = massspring::MassSpringSystem<double, massspring::Sparse>;
+using FastMassSpring = massspring::FastMassSpring<System>;
+
+System large_drape(int contact) {
+  massspring::SceneDescription<double> scene = massspring::large_drape_scene();
+  if (contact == 0) {
+    scene.colliders.clear();
+  }
+  System s = massspring::make_system<System>(scene);
+  s.add_force(massspring::Gravity<double>({0, -9.81, 0}));
+  if (contact < 2)
+    s.set_surface(massspring::Triangles(0, 3));
+  else
+    s.set_self_collision(massspring::contact::SelfCollision<double>{});
+  return s;
+}
+
+// 1 s (30 steps) of the full model.
+const std::pair<massspring::Points<double>, massspring::Points<double>>& folded_state() {
+  static const auto state = [] {
+    System s = large_drape(2);
+    FastMassSpring fms;
+    fms.options.iterations = 10;
+    fms.precompute(s, 1.0 / 30);
+    for (int k = 0; k < 30; ++k) fms.step(s);
+    return std::make_pair(s.positions(), s.velocities());
+  }();
+  return state;
+}
+
+void LargeDrape(benchmark::State& state) {
+  System s = large_drape(int(state.range(0)));
+  FastMassSpring fms;
+  fms.options.iterations = 10;
+  fms.precompute(s, 1.0 / 30);
+  const auto& start = folded_state();
+  long impulses = 0, zone_points = 0;
+  for (auto _ : state) {
+    s.positions() = start.first;  // same sizes: copies, no allocation
+    s.velocities() = start.second;
+    const massspring::StepReport r = fms.step(s);
+    impulses += r.contact_impulses;
+    zone_points += r.contact_zone_points;
+  }
+  state.counters["impulses"] =
+      benchmark::Counter(double(impulses), benchmark::Counter::kAvgIterations);
+  state.counters["zone_points"] =
+      benchmark::Counter(double(zone_points), benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(LargeDrape)->ArgName("contact")->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+void BoxHash(benchmark::State& state) {
+  const int n = int(state.range(0));
+  massspring::ClothOptions o;
+  o.columns = o.rows = n;
+  o.width = o.height = 1.0;
+  o.shear = massspring::ClothShear::One;
+  const massspring::SceneDescription<double> cloth = massspring::make_cloth(o);
+  const double spacing = 1.0 / (n - 1);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> step(-spacing / 2, spacing / 2);
+  massspring::Points<double> x0 = cloth.vertices, x1 = cloth.vertices;
+  for (Eigen::Index i = 0; i < x1.rows(); ++i)
+    for (int c = 0; c < 3; ++c) x1(i, c) += step(rng);
+  using Box = massspring::contact::AlignedBox3<double>;
+  const auto swept = [&](std::initializer_list<int> points) {
+    Box b{x0.row(*points.begin()).transpose(), x0.row(*points.begin()).transpose()};
+    for (int p : points) {
+      b.lo = b.lo.cwiseMin(x0.row(p).transpose()).cwiseMin(x1.row(p).transpose());
+      b.hi = b.hi.cwiseMax(x0.row(p).transpose()).cwiseMax(x1.row(p).transpose());
+    }
+    return b;
+  };
+  std::vector<Box> triangles, points;
+  for (const auto& f : cloth.faces) triangles.push_back(swept({f[0], f[1], f[2]}));
+  for (Eigen::Index i = 0; i < x0.rows(); ++i) points.push_back(swept({int(i)}));
+  massspring::contact::BoxHash<double> hash;
+  long pairs = 0;
+  for (auto _ : state) {
+    hash.build(triangles, 1.5 * spacing);
+    for (const Box& b : points) hash.query(b, [&](int) { ++pairs; });
+  }
+  state.counters["points"] = double(x0.rows());
+  state.counters["pairs"] = benchmark::Counter(double(pairs), benchmark::Counter::kAvgIterations);
+  state.counters["per_point"] =
+      benchmark::Counter(double(x0.rows()), benchmark::Counter::kIsIterationInvariantRate |
+                                                benchmark::Counter::kInvert);
+}
+BENCHMARK(BoxHash)->ArgName("grid")->RangeMultiplier(2)->Range(32, 256)->Unit(
+    benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
