@@ -20,9 +20,9 @@ namespace massspring::detail {
 /// 3. pinned points at their targets again (an impact zone may have moved one);
 /// 4. when every value is finite and the contact was resolved: the end state is written to the
 ///    system and the colliders take their end-of-step pose; otherwise the system is left as it
-///    was. With `swap`, x_end and v_end are swapped in (they hold the start state afterwards);
-///    without, copied (the system's arrays keep their memory, which Python's views of them
-///    need).
+///    was. With `swap_buffers`, x_end and v_end are swapped in (they hold the start state
+///    afterwards); without, copied (the system's arrays keep their memory, which Python's views of
+///    them need).
 /// Sets report.finite and the contact fields. Allocates nothing once the contact's work arrays
 /// have grown.
 /// `collider_friction` false: the colliders act as frictionless (FastMassSpring's contact term
@@ -30,7 +30,7 @@ namespace massspring::detail {
 template <class System>
 void commit_step(System& system, typename System::PointsType& x_end,
                  typename System::PointsType& v_end, typename System::Scalar dt, StepReport& report,
-                 bool collider_friction = true) {
+                 bool collider_friction = true, bool swap_buffers = false) {
   const auto& x0 = system.positions();
   const auto& pinned = system.pinned();
   const auto pin = [&] {
@@ -56,7 +56,7 @@ void commit_step(System& system, typename System::PointsType& x_end,
   // overflow only when they are near 1e308, which is divergence anyway).
   report.finite = std::isfinite(x_end.sum() + v_end.sum());
   if (report.finite && report.contact_resolved) {
-    if (swap) {
+    if (swap_buffers) {
       system.positions().swap(x_end);
       system.velocities().swap(v_end);
     } else {  // same sizes: no allocation

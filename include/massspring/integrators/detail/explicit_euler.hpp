@@ -53,7 +53,7 @@ class ExplicitStepper {
   /// @brief Ends the step (commit_step.hpp): x_ and v_ hold the candidate state.
   StepReport commit(System& system) {
     StepReport report;
-    commit_step(system, x_, v_, dt_, report, true, /*swap=*/true);
+    commit_step(system, x_, v_, dt_, report, true, /*swap_buffers=*/true);
     return report;
   }
 
