@@ -127,20 +127,25 @@ class SurfaceContact {
     e_.setup(in);
     zones_active_ = false;
     colliders_ = &in.colliders;
+    moved_.assign(std::size_t(e_.x0.rows()), 0);
     if (!e_.any_pairs) return report;
     const Scalar h = in.self_collision ? in.self_collision->thickness : Scalar(0);
     const Scalar mu = in.self_collision ? in.self_collision->friction : Scalar(0);
     for (int round = 0; round < max_rounds; ++round) {
       report.rounds = round + 1;
       candidates(h);
-      // Repulsion moves points: the candidates of the motion it leaves are found again.
+      // Repulsion moves points: those it pushed into a solid are held, and the candidates of
+      // the motion it leaves are found again.
       if (round == 0 && in.self_collision) {
         const int repelled = repel(h, mu);
         report.impulses += repelled;
-        if (repelled > 0) candidates(h);
+        if (repelled > 0) {
+          e_.hold_pushed_into_solids(in, moved_);
+          candidates(h);
+        }
       }
       const std::size_t last_hits = round == 0 ? hits_.max_size() : hits_.size();
-      if (!detect()) break;
+      if (!detect(round == 0)) break;
       if (round + 1 == max_rounds) {
         report.resolved = false;
         break;
@@ -149,7 +154,7 @@ class SurfaceContact {
       // points, or a crowd impulses only shuffle).
       if (!zones_active_ && round < impulse_rounds && hits_.size() < last_hits) {
         report.impulses += collide(mu);
-        e_.hold_pushed_into_solids(in);
+        e_.hold_pushed_into_solids(in, moved_);
       } else {
         report.zone_points = zones(in);
       }
@@ -236,6 +241,7 @@ class SurfaceContact {
     for (int k = 0; k < 4; ++k) {
       const int i = s.p[std::size_t(k)];
       e_.x1.row(i) += (s.a[std::size_t(k)] * e_.w(i) / den) * change.transpose();
+      moved_[std::size_t(i)] = 1;
     }
     return true;
   }
@@ -265,33 +271,46 @@ class SurfaceContact {
   }
 
   // 2. Continuous detection of every candidate; the hits go to hits_ (pair, time of impact).
-  bool detect() {
+  bool detect(bool all) {
     hits_.clear();
     for (const Pair& q : pairs_) {
-      Scalar gap = 0;
-      CcdResult<Scalar> r;
+      std::array<int, 4> p;
+      Scalar radii = 0, gap = 0;
       if (q.kind == 0) {
         const Element& pe = e_.points[std::size_t(q.a)];
         const Element& te = e_.triangles[std::size_t(q.b)];
+        p = {pe.p[0], te.p[0], te.p[1], te.p[2]};
         gap = e_.pair_gap(pe.owner, te.owner);
-        const int i = pe.p[0], a = te.p[0], b = te.p[1], c = te.p[2];
-        if (same_zone(i, a, b, c)) continue;
-        gap = start_gap(q, gap);
-        r = point_triangle_ccd<Scalar>(e_.p0(i), e_.p0(a), e_.p0(b), e_.p0(c), e_.d(i), e_.d(a),
-                                       e_.d(b), e_.d(c), gap);
       } else {
         const Element& ea = e_.edges[std::size_t(q.a)];
         const Element& eb = e_.edges[std::size_t(q.b)];
+        p = {ea.p[0], ea.p[1], eb.p[0], eb.p[1]};
         gap = e_.pair_gap(ea.owner, eb.owner);
-        const int a0 = ea.p[0], a1 = ea.p[1], b0 = eb.p[0], b1 = eb.p[1];
-        if (same_zone(a0, a1, b0, b1)) continue;
-        gap = start_gap(q, gap) + ea.radius + eb.radius;
-        r = edge_edge_ccd<Scalar>(e_.p0(a0), e_.p0(a1), e_.p0(b0), e_.p0(b1), e_.d(a0), e_.d(a1),
-                                  e_.d(b0), e_.d(b1), gap);
+        radii = ea.radius + eb.radius;
+      }
+      // A pair none of whose points moved since the last detection was clear then.
+      if (!all && !(moved_[std::size_t(p[0])] || moved_[std::size_t(p[1])] ||
+                    moved_[std::size_t(p[2])] || moved_[std::size_t(p[3])]))
+        continue;
+      if (same_zone(p[0], p[1], p[2], p[3])) continue;
+      // The gap first; only a pair it reports needs the start distance (a pair that starts
+      // closer keeps half of it): with a smaller gap the CCD could only report less.
+      CcdResult<Scalar> r = ccd(q.kind, p, gap + radii);
+      if (r.hit) {
+        const Scalar kept = start_gap(q, gap);
+        if (kept < gap) r = ccd(q.kind, p, kept + radii);
       }
       if (r.hit) hits_.push_back({q, r.toi});
     }
+    std::fill(moved_.begin(), moved_.end(), char(0));
     return !hits_.empty();
+  }
+  CcdResult<Scalar> ccd(int kind, const std::array<int, 4>& p, Scalar gap) const {
+    const auto x = [&](int k) { return e_.p0(p[std::size_t(k)]); };
+    const auto v = [&](int k) { return e_.d(p[std::size_t(k)]); };
+    return kind == 0
+               ? point_triangle_ccd<Scalar>(x(0), x(1), x(2), x(3), v(0), v(1), v(2), v(3), gap)
+               : edge_edge_ccd<Scalar>(x(0), x(1), x(2), x(3), v(0), v(1), v(2), v(3), gap);
   }
   // A pair that starts closer than its gap (a user's start state) keeps at least half its start
   // distance instead.
@@ -319,6 +338,7 @@ class SurfaceContact {
       // Friction between two cloth parts uses the self-collision coefficient; against an
       // obstacle's edges, the collider's kinetic one.
       const Scalar friction = cloth_pair(hit.pair) ? mu : obstacle_friction(hit.pair);
+      for (int i : s.p) moved_[std::size_t(i)] = 1;  // tested again, moved or not
       if (impulse(s, -approach * Scalar(1.01), friction)) ++count;
     }
     return count;
@@ -387,6 +407,7 @@ class SurfaceContact {
         if (blocked)
           for (int k = 0; k < count; ++k) e_.x1.row(m[k]) = e_.x0.row(m[k]);
       }
+      for (int k = 0; k < count; ++k) moved_[std::size_t(m[k])] = 1;
       moved += count;
     }
     return moved;
@@ -402,6 +423,7 @@ class SurfaceContact {
   bool zones_active_ = false;
   SurfaceElements<Scalar> e_;
   Points<Scalar> velocity_scratch_;
+  std::vector<char> moved_;  // points whose end position changed since the last detection
   std::vector<AlignedBox3<Scalar>> tri_boxes_, edge_boxes_;
   BoxHash<Scalar> hash_;
   std::vector<Pair> pairs_;

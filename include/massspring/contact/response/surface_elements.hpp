@@ -152,13 +152,15 @@ struct SurfaceElements {
     return false;
   }
   // A point an impulse pushed into a solid gets the colliders' position response (with their
-  // friction) and is held from then on, like the points the response left touching.
-  void hold_pushed_into_solids(const SurfaceContactInput<Scalar>& in) {
+  // friction) and is held from then on, like the points the response left touching; moved[i]
+  // is set for each.
+  void hold_pushed_into_solids(const SurfaceContactInput<Scalar>& in, std::vector<char>& moved) {
     if (in.colliders.empty()) return;
     for (int i = 0; i < n; ++i) {
       if (w(i) == 0 || !inside_solid(in.colliders, i)) continue;
       in.colliders.project(x0.row(i).data(), x1.row(i).data(), in.dt);
       w(i) = 0;
+      moved[std::size_t(i)] = 1;
     }
   }
 
