@@ -6,7 +6,7 @@
 ///
 /// The surface is a system's triangles and their edges (MassSpringSystem::set_surface()). The
 /// obstacles join with their thin parts as moving elements of infinite mass: a capsule's axis (an
-/// edge with the capsule's radius), a box's twelve edges, a mesh's vertices, edges and triangles,
+/// edge), a box's twelve edges, a mesh's vertices, edges and triangles,
 /// each carried by its collider from the pose at the start of the step to the one at its end.
 /// Solid interiors stay the colliders' point response (contact/colliders/colliders.hpp), which
 /// runs first.
@@ -23,9 +23,11 @@
 ///    approach, up to the missing distance h - d, with Coulomb friction: the tangential relative
 ///    displacement shrinks by mu times the normal one (sticking when it is smaller).
 /// 2. Continuous detection (contact/ccd/additive_ccd.hpp): a pair whose distance may fall below
-///    its gap g during the step (self: h / 10; an obstacle's edge: half its radius plus
-///    thickness) is a collision. A few rounds of inelastic impulses, each cancelling the pair's
-///    approach along the normal at the time of impact, with friction.
+///    its gap g during the step (self: h / 10; an obstacle: half the sum of a capsule's radius and
+///    the collider's thickness, from its axis, edges and faces: inside the distance at which its
+///    point response keeps the points, so a point resting on it is no collision) is a collision. A
+///    few rounds of inelastic impulses, each cancelling the pair's approach along the normal at the
+///    time of impact, with friction.
 /// 3. Rigid impact zones, the fail-safe: the points of collisions that remain are merged into
 ///    zones (a zone grows with every collision that touches it), and each zone moves rigidly over
 ///    the step, keeping its linear and angular momentum (contact/response/impact_zones.hpp); a
@@ -275,7 +277,7 @@ class SurfaceContact {
     hits_.clear();
     for (const Pair& q : pairs_) {
       std::array<int, 4> p;
-      Scalar radii = 0, gap = 0;
+      Scalar gap = 0;
       if (q.kind == 0) {
         const Element& pe = e_.points[std::size_t(q.a)];
         const Element& te = e_.triangles[std::size_t(q.b)];
@@ -286,7 +288,6 @@ class SurfaceContact {
         const Element& eb = e_.edges[std::size_t(q.b)];
         p = {ea.p[0], ea.p[1], eb.p[0], eb.p[1]};
         gap = e_.pair_gap(ea.owner, eb.owner);
-        radii = ea.radius + eb.radius;
       }
       // A pair none of whose points moved since the last detection was clear then.
       if (!all && !(moved_[std::size_t(p[0])] || moved_[std::size_t(p[1])] ||
@@ -295,10 +296,10 @@ class SurfaceContact {
       if (same_zone(p[0], p[1], p[2], p[3])) continue;
       // The gap first; only a pair it reports needs the start distance (a pair that starts
       // closer keeps half of it): with a smaller gap the CCD could only report less.
-      CcdResult<Scalar> r = ccd(q.kind, p, gap + radii);
+      CcdResult<Scalar> r = ccd(q.kind, p, gap);
       if (r.hit) {
         const Scalar kept = start_gap(q, gap);
-        if (kept < gap) r = ccd(q.kind, p, kept + radii);
+        if (kept < gap) r = ccd(q.kind, p, kept);
       }
       if (r.hit) hits_.push_back({q, r.toi});
     }

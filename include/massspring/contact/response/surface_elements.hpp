@@ -45,7 +45,7 @@ struct SurfaceContactInput {
 };
 
 /// @brief The pair's points p and barycentric weights a (+ on the first element, - on the
-/// second), its closest distance [m] (less the radii of capsule axes) and unit normal n (from
+/// second), its closest distance [m] and unit normal n (from
 /// the second element to the first).
 template <class Scalar>
 struct PairStencil {
@@ -69,11 +69,10 @@ struct SurfaceElements {
   using Pair = ElementPair;
 
   /// An element: up to three point indices into the augmented arrays; owner -1 for the cloth, or
-  /// the collider's index; radius: a capsule axis's.
+  /// the collider's index.
   struct Element {
     std::array<int, 3> p;
     int owner;
-    Scalar radius;
   };
 
   // Augmented arrays: the cloth's points, then the obstacles' (infinite mass); elements.
@@ -102,13 +101,13 @@ struct SurfaceElements {
     // Cloth: the corners of the triangles (each once), the edges, the triangles.
     mark.assign(std::size_t(n), 0);
     for (Eigen::Index t = 0; t < in.triangles.rows(); ++t) {
-      triangles.push_back({{in.triangles(t, 0), in.triangles(t, 1), in.triangles(t, 2)}, -1, 0});
+      triangles.push_back({{in.triangles(t, 0), in.triangles(t, 1), in.triangles(t, 2)}, -1});
       for (int k = 0; k < 3; ++k) mark[std::size_t(in.triangles(t, k))] = 1;
     }
     for (int i = 0; i < n; ++i)
-      if (mark[std::size_t(i)]) points.push_back({{i, -1, -1}, -1, 0});
+      if (mark[std::size_t(i)]) points.push_back({{i, -1, -1}, -1});
     for (Eigen::Index e = 0; e < in.edges.rows(); ++e)
-      edges.push_back({{in.edges(e, 0), in.edges(e, 1), -1}, -1, 0});
+      edges.push_back({{in.edges(e, 0), in.edges(e, 1), -1}, -1});
     const std::size_t cloth_edges = edges.size();
     // Obstacles.
     int next = n;
@@ -186,9 +185,10 @@ struct SurfaceElements {
       x1.row(i) = (c.end_rotation() * local + c.end_translation()).transpose();
       owner[std::size_t(i)] = ci;
     };
-    // The gap kept from an obstacle's edges and faces [m]: half its radius and thickness, and at
-    // least a quarter of the self-collision thickness (or 0.25 mm without it) for an edge with
-    // neither.
+    // The gap kept from an obstacle's axis, edges and faces [m]: half the sum of a capsule's
+    // radius and the thickness (half the distance at which the point response keeps the points),
+    // or, for a box or mesh of no thickness, a quarter of the self-collision thickness (0.25 mm
+    // without it).
     Scalar keep = (c.radius() * Scalar(c.shape() == ColliderShape::Capsule) + c.thickness()) / 2;
     if (!(keep > 0)) keep = self_collision ? self_collision->thickness / 4 : Scalar(2.5e-4);
     gap[std::size_t(ci)] = keep;
@@ -196,7 +196,7 @@ struct SurfaceElements {
       case ColliderShape::Capsule:
         place(next, -c.axis());
         place(next + 1, c.axis());
-        edges.push_back({{next, next + 1, -1}, ci, c.radius()});
+        edges.push_back({{next, next + 1, -1}, ci});
         return next + 2;
       case ColliderShape::Box: {
         for (int k = 0; k < 8; ++k)
@@ -205,7 +205,7 @@ struct SurfaceElements {
                    (k & 4) ? c.axis()(2) : -c.axis()(2)));
         for (int k = 0; k < 8; ++k)
           for (int bit : {1, 2, 4})
-            if (!(k & bit)) edges.push_back({{next + k, next + (k | bit), -1}, ci, 0});
+            if (!(k & bit)) edges.push_back({{next + k, next + (k | bit), -1}, ci});
         return next + 8;
       }
       case ColliderShape::Mesh: {
@@ -213,14 +213,14 @@ struct SurfaceElements {
         const int m = int(mesh.vertices().rows());
         for (int k = 0; k < m; ++k) {
           place(next + k, mesh.vertices().row(k).transpose());
-          points.push_back({{next + k, -1, -1}, ci, 0});
+          points.push_back({{next + k, -1, -1}, ci});
         }
         const Triangles& f = mesh.triangles();
         for (Eigen::Index t = 0; t < f.rows(); ++t) {
-          triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci, 0});
+          triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci});
           for (int k = 0; k < 3; ++k) {
             const int a = f(t, k), b = f(t, (k + 1) % 3);
-            if (a < b) edges.push_back({{next + a, next + b, -1}, ci, 0});
+            if (a < b) edges.push_back({{next + a, next + b, -1}, ci});
             // The other side of an interior edge adds it once (a > b there); a boundary edge
             // whose only triangle lists it as a > b is added below.
           }
@@ -229,7 +229,7 @@ struct SurfaceElements {
           for (int k = 0; k < 3; ++k) {
             const int a = f(t, k), b = f(t, (k + 1) % 3);
             if (a > b && !mesh_has_directed(f, b, a))
-              edges.push_back({{next + b, next + a, -1}, ci, 0});
+              edges.push_back({{next + b, next + a, -1}, ci});
           }
         return next + m;
       }
@@ -261,8 +261,8 @@ struct SurfaceElements {
       b.lo = b.lo.cwiseMin(p0(e.p[std::size_t(k)])).cwiseMin(p1(e.p[std::size_t(k)]));
       b.hi = b.hi.cwiseMax(p0(e.p[std::size_t(k)])).cwiseMax(p1(e.p[std::size_t(k)]));
     }
-    b.lo.array() -= grow + e.radius;
-    b.hi.array() += grow + e.radius;
+    b.lo.array() -= grow;
+    b.hi.array() += grow;
     return b;
   }
 
@@ -290,7 +290,6 @@ struct SurfaceElements {
       const V3 diff = (a0 + cp.s * (a1 - a0)) - (b0 + cp.t * (b1 - b0));
       s.distance = std::sqrt(cp.squared_distance);
       s.n = s.distance > 0 ? V3(diff / s.distance) : edge_normal(a1 - a0, b1 - b0);
-      s.distance -= ea.radius + eb.radius;
     }
     return s;
   }
