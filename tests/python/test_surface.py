@@ -129,3 +129,18 @@ def test_a_state_file_keeps_the_surface_and_self_collision(tmp_path):
     assert np.array_equal(back.surface, system.surface)
     assert np.array_equal(back.surface_edges, system.surface_edges)
     assert back.self_collision == system.self_collision
+
+
+def test_a_step_reports_its_surface_contact():
+    """The ribbon_pile scene (self-collision on) at dt = 1/30: each report says how many contact
+    impulses and impact-zone points the step took, and that the contact was resolved."""
+    system = ms.load_scene(scene("ribbon_pile.json"))
+    assert system.self_collision == ms.SelfCollision()
+    system.add_force(ms.Gravity([0, -9.81, 0]))
+    solver = ms.FastMassSpring()
+    solver.options.iterations = 10
+    solver.precompute(system, 1 / 30)
+    reports = [solver.step(system) for _ in range(12)]
+    assert all(r.ok() and r.contact_resolved for r in reports)
+    assert sum(r.contact_impulses + r.contact_zone_points for r in reports) > 0
+    assert system.positions[:, 1].min() >= 0  # the floor
