@@ -15,11 +15,12 @@
 int main(int argc, char** argv) {
   if (argc > 3 ||
       (argc == 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help"))) {
-    std::cerr << "usage: massspring-make-scenes [folder [xml_folder]]\n"
-                 "  (default: examples/scenes examples/scenes_xml)\n"
-                 "Writes chain, net, flag, curtain, drape, table, tilted, pole, mesh, clothesline,\n"
-                 "ribbon_pile and two_cloths (.json + .obj) into folder and orbit,\n"
-                 "cantilever, shrinking_chain and damping_series (.xml) into xml_folder.\n";
+    std::cerr
+        << "usage: massspring-make-scenes [folder [xml_folder]]\n"
+           "  (default: examples/scenes examples/scenes_xml)\n"
+           "Writes chain, net, flag, curtain, drape, table, tilted, pole, mesh, clothesline,\n"
+           "ribbon_pile and two_cloths (.json + .obj) into folder and orbit,\n"
+           "cantilever, shrinking_chain and damping_series (.xml) into xml_folder.\n";
     return argc > 3 ? 2 : 0;
   }
   const std::filesystem::path folder = argc >= 2 ? argv[1] : "examples/scenes";

@@ -18,6 +18,7 @@
 #include "massspring/contact/collision_handler.hpp"
 #include "massspring/contact/response/surface_contact.hpp"
 #include "massspring/contact/self_collision.hpp"
+#include "massspring/detail/triangle_edges.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
@@ -291,7 +292,7 @@ class MassSpringSystem {
     return collision_handler_.get();
   }
 
-  // ---- obstacles (contact/colliders/collider.hpp, contact/colliders/colliders.hpp) -------------------------------
+  // ---- obstacles (contact/colliders/collider.hpp, colliders.hpp) --------------------------
 
   /// @brief Adds an obstacle (contact::Collider<Scalar>::plane(), sphere(), capsule(), box(),
   /// mesh()) that every integrator keeps the points out of; returns its index in colliders().
@@ -335,14 +336,7 @@ class MassSpringSystem {
         throw Error(detail::message(name(), ": zero area at the rest positions"));
     }
     std::vector<std::pair<int, int>> edges;
-    edges.reserve(3 * std::size_t(triangles.rows()));
-    for (Eigen::Index t = 0; t < triangles.rows(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const int i = triangles(t, k), j = triangles(t, (k + 1) % 3);
-        edges.emplace_back(std::min(i, j), std::max(i, j));
-      }
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    detail::triangle_edges(triangles, edges);
     surface_edges_.resize(Eigen::Index(edges.size()), 2);
     for (std::size_t e = 0; e < edges.size(); ++e)
       surface_edges_.row(Eigen::Index(e)) << edges[e].first, edges[e].second;

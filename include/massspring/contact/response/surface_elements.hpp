@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "massspring/contact/broad_phase/box_hash.hpp"
@@ -25,6 +26,7 @@
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/contact/self_collision.hpp"
+#include "massspring/detail/triangle_edges.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
@@ -216,32 +218,15 @@ struct SurfaceElements {
           points.push_back({{next + k, -1, -1}, ci});
         }
         const Triangles& f = mesh.triangles();
-        for (Eigen::Index t = 0; t < f.rows(); ++t) {
-          triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci});
-          for (int k = 0; k < 3; ++k) {
-            const int a = f(t, k), b = f(t, (k + 1) % 3);
-            if (a < b) edges.push_back({{next + a, next + b, -1}, ci});
-            // The other side of an interior edge adds it once (a > b there); a boundary edge
-            // whose only triangle lists it as a > b is added below.
-          }
-        }
         for (Eigen::Index t = 0; t < f.rows(); ++t)
-          for (int k = 0; k < 3; ++k) {
-            const int a = f(t, k), b = f(t, (k + 1) % 3);
-            if (a > b && !mesh_has_directed(f, b, a))
-              edges.push_back({{next + b, next + a, -1}, ci});
-          }
+          triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci});
+        detail::triangle_edges(f, mesh_edges);
+        for (const auto& [a, b] : mesh_edges) edges.push_back({{next + a, next + b, -1}, ci});
         return next + m;
       }
       default:
         return next;
     }
-  }
-  static bool mesh_has_directed(const Triangles& f, int a, int b) {
-    for (Eigen::Index t = 0; t < f.rows(); ++t)
-      for (int k = 0; k < 3; ++k)
-        if (f(t, k) == a && f(t, (k + 1) % 3) == b) return true;
-    return false;
   }
 
   // The gap a pair keeps [m] (by the owners of its two elements) and whether it is tested.
@@ -325,6 +310,7 @@ struct SurfaceElements {
   std::vector<char> mark, pinned;
   std::vector<Scalar> gap;  // per collider [m]
   std::vector<Element> points, edges, triangles;
+  std::vector<std::pair<int, int>> mesh_edges;  // scratch of add_obstacle()
 };
 
 }  // namespace massspring::contact
