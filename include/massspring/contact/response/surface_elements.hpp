@@ -220,7 +220,7 @@ struct SurfaceElements {
         const Triangles& f = mesh.triangles();
         for (Eigen::Index t = 0; t < f.rows(); ++t)
           triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci});
-        detail::triangle_edges(f, mesh_edges);
+        massspring::detail::triangle_edges(f, mesh_edges);
         for (const auto& [a, b] : mesh_edges) edges.push_back({{next + a, next + b, -1}, ci});
         return next + m;
       }
