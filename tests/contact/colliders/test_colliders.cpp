@@ -1,10 +1,11 @@
-// contact/colliders/collider.hpp, triangle_mesh.hpp, point_triangle.hpp (issue 22, item 1): the geometry
-// of the colliders against independent oracles. Signed distance and outward normal of the plane,
-// sphere, capsule and box against their closed forms (inside and outside, a rotated box, a moved
-// pose, the pose a velocity and an angular velocity give after a step, and the surface velocity
-// v + w x (x - t)); the mesh's closest point and first crossing against a brute force over all
-// triangles written here (its own point-triangle distance and segment-plane crossing); the errors
-// for degenerate input.
+// contact/colliders/collider.hpp, triangle_mesh.hpp, point_triangle.hpp: the geometry of the
+// colliders against independent oracles. Signed distance and outward normal of the plane, sphere,
+// capsule and box against their closed forms (inside and outside, a rotated box, a moved pose, the
+// pose a velocity and an angular velocity give after a step, and the surface velocity
+// v + w x (x - t)); a path through a solid sent back to where it entered, against a sampled path;
+// the mesh's closest point and first crossing against a brute force over all triangles written
+// here (its own point-triangle distance and segment-plane crossing); the errors for degenerate
+// input.
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
@@ -638,4 +639,65 @@ TEST_CASE("collider errors: degenerate shapes, materials and motions are refused
   CHECK(c.kinetic_friction() == 0.3);
   c.set_friction(0.4);
   CHECK(c.kinetic_friction() == 0.4);
+}
+
+TEST_CASE(
+    "solid colliders: a path through a sphere, capsule or box that ends beyond it is sent "
+    "back to the tangent plane where it entered") {
+  // Oracle: the entry found by sampling the path densely against each shape's closed-form
+  // distance (written here), and the tangent plane's closed form for the sphere.
+  const double thickness = 0.01;
+  const auto sphere_phi = [](const V3& p) { return p.norm() - 0.5; };
+  const auto capsule_phi = [](const V3& p) {
+    const double t = std::clamp(p.x() / 1.0, -0.4, 0.4);  // axis from (-0.4,0,0) to (0.4,0,0)
+    return (p - V3(t, 0, 0)).norm() - 0.3;
+  };
+  const auto box_phi = [](const V3& p) {
+    const V3 q = p.cwiseAbs() - V3(0.5, 0.3, 0.4);
+    return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+  };
+  struct Shape {
+    Collider collider;
+    std::function<double(const V3&)> phi;
+  };
+  std::vector<Shape> shapes = {{Collider::sphere(V3::Zero(), 0.5), sphere_phi},
+                               {Collider::capsule(V3(-0.4, 0, 0), V3(0.4, 0, 0), 0.3), capsule_phi},
+                               {Collider::box(V3::Zero(), V3(0.5, 0.3, 0.4)), box_phi}};
+  Random r(5);
+  for (Shape& s : shapes) {
+    s.collider.set_thickness(thickness);
+    int crossing = 0;
+    for (int k = 0; k < 200; ++k) {
+      // From outside on one side to outside on the other, through the middle region.
+      const V3 dir = V3(r(), r(), r()).normalized();
+      const V3 offset = 0.1 * V3(r(), r(), r());
+      const V3 x = offset + 1.5 * dir, x_end = offset - 1.5 * dir;
+      double entry = -1;
+      for (int j = 0; j <= 100000; ++j) {
+        const double t = j / 100000.0;
+        if (s.phi(x + t * (x_end - x)) < thickness) {
+          entry = t;
+          break;
+        }
+      }
+      contact::ColliderContact<double> kc;
+      const bool hit = s.collider.contact(x, x_end, 0, kc);
+      CHECK(hit == (entry >= 0));
+      if (!hit || entry < 0) continue;
+      ++crossing;
+      // Pushed back onto the tangent plane at the entry e: (x_end + depth n - e) . n = 0, with n
+      // the outward normal at e, and the pushed point no longer beyond the solid.
+      const V3 e = x + entry * (x_end - x);
+      const V3 pushed = x_end + kc.depth * kc.normal;
+      CHECK(kc.depth > 0);
+      CHECK(std::abs((pushed - e).dot(kc.normal)) < 1e-4);
+      CHECK(s.phi(pushed) > thickness - 1e-4);  // out of the solid (convex: the plane bounds it)
+      if (&s == &shapes[0]) CHECK((kc.normal - e.normalized()).norm() < 1e-3);
+    }
+    CHECK(crossing > 150);
+  }
+  // A path that passes beside the sphere is no contact; one that starts inside is the point's
+  // ordinary response (its end is outside: none).
+  contact::ColliderContact<double> kc;
+  CHECK_FALSE(shapes[0].collider.contact(V3(-2, 0.6, 0), V3(2, 0.6, 0), 0, kc));
 }

@@ -38,25 +38,31 @@ class BoxHash {
  public:
   using Box = AlignedBox3<Scalar>;
 
-  /// @brief Stores `boxes` (kept by reference until the next build: do not change them between
-  /// build() and query()) with cells of side `cell` [m] (> 0, finite; the boxes finite). Pick the
-  /// cell about the size of a typical box: a box enters every cell it touches.
+  /// @brief Stores `boxes` (kept by reference until the next build) with cells of side `cell` [m]
+  /// (> 0, finite; the boxes finite). Pick the cell about the size of a typical box: a box enters
+  /// every cell it touches. A box changed after build() stays in the cells of its old value, and
+  /// query() tests the new value: change one only to tighten it, or filter it out of the visits.
   void build(const std::vector<Box>& boxes, Scalar cell) {
     boxes_ = &boxes;
     inv_cell_ = Scalar(1) / cell;
     const std::size_t m = boxes.size();
-    std::size_t entries = 0;
-    for (const Box& b : boxes) entries += cell_count(b);
+    keys_.clear();
+    for (const Box& b : boxes) for_each_cell(b, [&](std::uint64_t key) { keys_.push_back(key); });
+    const std::size_t entries = keys_.size();
     std::size_t buckets = 1;
-    while (buckets < 2 * entries + 1) buckets *= 2;
+    while (buckets < entries + 1) buckets *= 2;
     mask_ = buckets - 1;
+    for (std::uint64_t& key : keys_) key &= mask_;
     start_.assign(buckets + 1, 0);
-    for (const Box& b : boxes) for_each_cell(b, [&](std::uint64_t key) { ++start_[key + 1]; });
+    for (std::uint64_t key : keys_) ++start_[key + 1];
     for (std::size_t k = 0; k < buckets; ++k) start_[k + 1] += start_[k];
     fill_.assign(start_.begin(), start_.end() - 1);
     ids_.resize(entries);
-    for (std::size_t i = 0; i < m; ++i)
-      for_each_cell(boxes[i], [&](std::uint64_t key) { ids_[fill_[key]++] = int(i); });
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::size_t count = cell_count(boxes[i]);
+      for (std::size_t c = 0; c < count; ++c) ids_[fill_[keys_[next++]]++] = int(i);
+    }
     stamp_.assign(m, 0);
     query_ = 0;
   }
@@ -70,7 +76,8 @@ class BoxHash {
     }
     const auto& boxes = *boxes_;
     for_each_cell(q, [&](std::uint64_t key) {
-      for (std::size_t k = start_[key]; k < start_[key + 1]; ++k) {
+      key &= mask_;
+      for (std::uint32_t k = start_[key]; k < start_[key + 1]; ++k) {
         const int i = ids_[k];
         if (stamp_[std::size_t(i)] == query_) continue;
         stamp_[std::size_t(i)] = query_;
@@ -108,13 +115,14 @@ class BoxHash {
   std::uint64_t hash(long long x, long long y, long long z) const {
     const auto h = std::uint64_t(x) * 73856093ull ^ std::uint64_t(y) * 19349663ull ^
                    std::uint64_t(z) * 83492791ull;
-    return (h ^ (h >> 29)) & mask_;
+    return h ^ (h >> 29);
   }
 
   const std::vector<Box>* boxes_ = nullptr;
   Scalar inv_cell_ = 1;
   std::uint64_t mask_ = 0;
-  std::vector<std::size_t> start_, fill_;
+  std::vector<std::uint64_t> keys_;  // build(): each box's cells' keys, in order
+  std::vector<std::uint32_t> start_, fill_;
   std::vector<int> ids_;
   std::vector<unsigned> stamp_;
   unsigned query_ = 0;

@@ -277,13 +277,20 @@ class Collider {
         const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
         return d.distance > reach_ + motion_ + slop;
       }
-      default:
-        return (x_end - end_translation_).squaredNorm() > (reach_ + slop) * (reach_ + slop);
+      default: {
+        // The end, then the whole path (a point may cross the solid within one step).
+        const Scalar r = reach_ + slop;
+        if (!((x_end - end_translation_).squaredNorm() > r * r)) return false;
+        const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
+        return d.distance > r + motion_;
+      }
     }
   }
   /// @brief The contact of a point that moves from x_start (start of the step, collider at its
   /// current pose) to x_end (end of the step, collider at its end pose): true, with c set, when
-  /// phi(x_end) < thickness + slop or (mesh) the path crosses a triangle.
+  /// phi(x_end) < thickness + slop, or the path crosses a triangle (mesh), or the path starts
+  /// outside a sphere, capsule or box, passes through it and ends beyond it (c then pushes x_end
+  /// back onto the plane tangent where the path entered).
   bool contact(const V3& x_start, const V3& x_end, Scalar slop, ColliderContact<Scalar>& c) const {
     if (far(x_start, x_end, slop)) return false;
     Scalar phi = 0;
@@ -318,14 +325,18 @@ class Collider {
         return mesh_contact(x_start, end_rotation_.transpose() * (x_end - end_translation_), slop,
                             c);
     }
-    if (!(phi < thickness_ + slop)) return false;
+    if (!(phi < thickness_ + slop)) {
+      if (shape_ == ColliderShape::Plane || !crossed(x_start, x_end, phi, slop, c)) return false;
+      c.velocity = surface_velocity(x_end);
+      return true;
+    }
     c.depth = thickness_ - phi;
     // The nearest surface point may be on the far side (a point dragged past a sphere's centre
     // would be pushed out of its bottom): when the push would go on along the point's path, or
     // the point is deeper than half the solid's inner size, a point that came from outside
     // leaves through the tangent plane where its path entered instead.
     if (c.depth > 0 && (c.normal.dot(x_start - x_end) < 0 || c.depth > inner_ / 2))
-      entry_push(x_start, x_end, slop, c);
+      entry_push(x_start, x_end, slop, 1, c);
     c.velocity = surface_velocity(x_end);
     return true;
   }
@@ -406,10 +417,45 @@ class Collider {
     return 0;
   }
 
+  // For a point that ends outside a convex solid (phi_end = phi(x_end) >= thickness): whether
+  // its local path a -> b starts outside and passes inside the contact zone; if so, c pushes
+  // x_end onto the tangent plane at the entry. phi is 1-Lipschitz and convex along the path, so
+  // its minimum is at least (phi(a) + phi_end - |b - a|) / 2 (most paths stop there), and is
+  // found by golden-section search (60 steps).
+  bool crossed(const V3& x_start, const V3& x_end, Scalar phi_end, Scalar slop,
+               ColliderContact<Scalar>& c) const {
+    const V3 a = rotation_.transpose() * (x_start - translation_);
+    const V3 b = end_rotation_.transpose() * (x_end - end_translation_);
+    V3 n;
+    const Scalar phi_a = local_phi(a, n);
+    if ((phi_a + phi_end - (b - a).norm()) / 2 >= thickness_) return false;
+    const auto phi_at = [&](Scalar s) { return local_phi(a + s * (b - a), n); };
+    const Scalar golden = Scalar(0.6180339887498949);
+    Scalar lo = 0, hi = 1, s1 = hi - golden * (hi - lo), s2 = lo + golden * (hi - lo);
+    Scalar f1 = phi_at(s1), f2 = phi_at(s2);
+    for (int k = 0; k < 60; ++k) {
+      if (f1 < f2) {
+        hi = s2, s2 = s1, f2 = f1;
+        s1 = hi - golden * (hi - lo);
+        f1 = phi_at(s1);
+      } else {
+        lo = s1, s1 = s2, f1 = f2;
+        s2 = lo + golden * (hi - lo);
+        f2 = phi_at(s2);
+      }
+    }
+    const Scalar s_min = f1 < f2 ? s1 : s2;
+    if (!(std::min(f1, f2) < thickness_)) return false;
+    c.depth = 0;
+    entry_push(x_start, x_end, slop, s_min, c);
+    return c.depth > 0;
+  }
+
   // For a deep point whose path started outside: the entry point e of the local path a -> b
-  // into the contact zone (bisection on phi - thickness, 48 halvings), and the push of x_end onto
-  // the tangent plane there (outside the solid, which is convex).
-  void entry_push(const V3& x_start, const V3& x_end, Scalar slop,
+  // into the contact zone (bisection on phi - thickness over the parameters [0, inside], 48
+  // halvings; the path is in the zone at `inside`), and the push of x_end onto the tangent plane
+  // there (outside the solid, which is convex).
+  void entry_push(const V3& x_start, const V3& x_end, Scalar slop, Scalar inside,
                   ColliderContact<Scalar>& c) const {
     const V3 a = rotation_.transpose() * (x_start - translation_);
     const V3 b = end_rotation_.transpose() * (x_end - end_translation_);
@@ -418,7 +464,7 @@ class Collider {
     // (a point resting on it sits there up to rounding, and must not fall through).
     const Scalar start_tol = std::max(slop, Scalar(1e-6) * inner_);
     if (!(local_phi(a, n) >= thickness_ - start_tol)) return;  // started inside: nearest surface
-    Scalar lo = 0, hi = 1;
+    Scalar lo = 0, hi = inside;
     for (int k = 0; k < 48 && hi - lo > std::numeric_limits<Scalar>::epsilon(); ++k) {
       const Scalar mid = (lo + hi) / 2;
       if (local_phi(a + mid * (b - a), n) >= thickness_ - start_tol)

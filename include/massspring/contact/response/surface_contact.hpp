@@ -5,8 +5,9 @@
 /// has none.
 ///
 /// The surface is a system's triangles and their edges (MassSpringSystem::set_surface()). The
-/// obstacles join with their thin parts as moving elements of infinite mass: a capsule's axis (an
-/// edge), a box's twelve edges, a mesh's vertices, edges and triangles,
+/// obstacles join with their thin parts as moving elements of infinite mass: a sphere's centre (a
+/// point), a capsule's axis (an edge and its two ends), a box's corners and twelve edges, a
+/// mesh's vertices, edges and triangles,
 /// each carried by its collider from the pose at the start of the step to the one at its end.
 /// Solid interiors stay the colliders' point response (contact/colliders/colliders.hpp), which
 /// runs first.
@@ -23,9 +24,10 @@
 ///    approach, up to the missing distance h - d, with Coulomb friction: the tangential relative
 ///    displacement shrinks by mu times the normal one (sticking when it is smaller).
 /// 2. Continuous detection (contact/ccd/additive_ccd.hpp): a pair whose distance may fall below
-///    its gap g during the step (self: h / 10; an obstacle: half the sum of a capsule's radius and
-///    the collider's thickness, from its axis, edges and faces: inside the distance at which its
-///    point response keeps the points, so a point resting on it is no collision) is a collision. A
+///    its gap g during the step (self: h / 10; an obstacle: half the sum of a sphere's or capsule's
+///    radius and the collider's thickness, from its centre, axis, edges and faces: inside the
+///    distance at which its point response keeps the points, so a point resting on it is no
+///    collision) is a collision. A
 ///    few rounds of inelastic impulses, each cancelling the pair's approach along the normal at the
 ///    time of impact, with friction.
 /// 3. Rigid impact zones, the fail-safe: the points of collisions that remain are merged into
@@ -41,8 +43,9 @@
 /// inelastic normal impulse with friction no larger than Coulomb's never adds kinetic energy.
 /// Velocities change by the displacement change over dt. Pinned points (w = 0) never move.
 ///
-/// Cost: a spatial hash of the swept bounding boxes (contact/broad_phase/box_hash.hpp) per round,
-/// then the narrow phase of each candidate; the work arrays keep their capacity, so after the
+/// Cost: one spatial hash of the swept bounding boxes per step, then the narrow phase of each
+/// candidate; later rounds query again only the elements whose points moved
+/// (contact/response/surface_candidates.hpp). The work arrays keep their capacity, so after the
 /// first steps nothing allocates.
 
 #include <Eigen/Core>
@@ -53,12 +56,12 @@
 #include <optional>
 #include <vector>
 
-#include "massspring/contact/broad_phase/box_hash.hpp"
 #include "massspring/contact/ccd/additive_ccd.hpp"
 #include "massspring/contact/colliders/colliders.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/contact/response/impact_zones.hpp"
+#include "massspring/contact/response/surface_candidates.hpp"
 #include "massspring/contact/response/surface_elements.hpp"
 #include "massspring/contact/self_collision.hpp"
 #include "massspring/types.hpp"
@@ -135,7 +138,7 @@ class SurfaceContact {
     const Scalar mu = in.self_collision ? in.self_collision->friction : Scalar(0);
     for (int round = 0; round < max_rounds; ++round) {
       report.rounds = round + 1;
-      candidates(h);
+      candidates(h, round == 0);
       // Repulsion moves points: those it pushed into a solid are held, and the candidates of
       // the motion it leaves are found again.
       if (round == 0 && in.self_collision) {
@@ -143,7 +146,7 @@ class SurfaceContact {
         report.impulses += repelled;
         if (repelled > 0) {
           e_.hold_pushed_into_solids(in, moved_);
-          candidates(h);
+          candidates(h, false);
         }
       }
       const std::size_t last_hits = round == 0 ? hits_.max_size() : hits_.size();
@@ -173,46 +176,15 @@ class SurfaceContact {
     return report;
   }
 
-  // Candidate pairs of the current motion x0 -> x1: boxes grown by half the largest distance a
-  // pair is tested at (the thickness, or an obstacle's gap).
-  void candidates(Scalar h) {
-    Scalar grow = std::max(h, e_.self_gap);
-    for (Scalar g : e_.gap) grow = std::max(grow, g);
-    grow /= 2;
-    Scalar extent = 0;
-    tri_boxes_.resize(e_.triangles.size());
-    for (std::size_t t = 0; t < e_.triangles.size(); ++t) {
-      tri_boxes_[t] = e_.swept(e_.triangles[t], 3, grow);
-      extent += (tri_boxes_[t].hi - tri_boxes_[t].lo).maxCoeff();
-    }
-    edge_boxes_.resize(e_.edges.size());
-    for (std::size_t e = 0; e < e_.edges.size(); ++e)
-      edge_boxes_[e] = e_.swept(e_.edges[e], 2, grow);
-    pairs_.clear();
-    const Scalar cell = extent / Scalar(std::max<std::size_t>(1, e_.triangles.size()));
-    hash_.build(tri_boxes_, cell);
-    for (std::size_t v = 0; v < e_.points.size(); ++v) {
-      const Element& pe = e_.points[v];
-      const auto box = e_.swept(pe, 1, grow);
-      hash_.query(box, [&](int t) {
-        const Element& te = e_.triangles[std::size_t(t)];
-        if (e_.pair_gap(pe.owner, te.owner) < 0) return;
-        const int i = pe.p[0];
-        if (i == te.p[0] || i == te.p[1] || i == te.p[2]) return;
-        pairs_.push_back({0, int(v), t});
-      });
-    }
-    hash_.build(edge_boxes_, cell);
-    for (std::size_t a = 0; a < e_.edges.size(); ++a) {
-      const Element& ea = e_.edges[a];
-      hash_.query(edge_boxes_[a], [&](int b) {
-        if (b <= int(a)) return;
-        const Element& eb = e_.edges[std::size_t(b)];
-        if (e_.pair_gap(ea.owner, eb.owner) < 0) return;
-        for (int i : {ea.p[0], ea.p[1]})
-          if (i == eb.p[0] || i == eb.p[1]) return;
-        pairs_.push_back({1, int(a), b});
-      });
+  // The cloth's boxes are grown by half the largest distance two cloth elements are tested at
+  // (the thickness), an obstacle's by its gap; the stored ones by a further margin of half the
+  // thickness (at least 0.5 mm), room for the impulses of the rounds.
+  void candidates(Scalar h, bool full) {
+    if (full) {
+      const Scalar grow = std::max(h, e_.self_gap) / 2;
+      broad_.full(e_, grow, std::max(grow, Scalar(5e-4)));
+    } else {
+      broad_.refresh(e_, moved_);
     }
   }
 
@@ -251,8 +223,8 @@ class SurfaceContact {
   // 1. Repulsion: pairs closer than h at the end of the step that came closer over it.
   int repel(Scalar h, Scalar mu) {
     int count = 0;
-    for (const Pair& q : pairs_) {
-      if (!cloth_pair(q)) continue;
+    for (const Pair& q : broad_.pairs()) {
+      if (!cloth_pair(q) || apart(e_.points_of(q), q.kind == 0 ? 1 : 2, h, false)) continue;
       const Stencil s = e_.stencil(q, [&](int i) { return e_.p1(i); });
       if (!(s.distance < h)) continue;
       Scalar approach = 0;  // relative displacement along n over the step (< 0: closer)
@@ -266,6 +238,24 @@ class SurfaceContact {
     }
     return count;
   }
+  // Whether the boxes of points p[0..split) and p[split..4), over the step (swept) or at its
+  // end, are more than `distance` apart along some axis (then so are the elements).
+  [[nodiscard]] bool apart(const std::array<int, 4>& p, int split, Scalar distance,
+                           bool swept) const {
+    for (int c = 0; c < 3; ++c) {
+      Scalar lo[2] = {std::numeric_limits<Scalar>::infinity(),
+                      std::numeric_limits<Scalar>::infinity()};
+      Scalar hi[2] = {-lo[0], -lo[0]};
+      for (int k = 0; k < 4; ++k) {
+        const int side = k < split ? 0 : 1, i = p[std::size_t(k)];
+        const Scalar a = e_.x1(i, c), b = swept ? e_.x0(i, c) : a;
+        lo[side] = std::min({lo[side], a, b});
+        hi[side] = std::max({hi[side], a, b});
+      }
+      if (lo[0] - hi[1] > distance || lo[1] - hi[0] > distance) return true;
+    }
+    return false;
+  }
   [[nodiscard]] bool cloth_pair(const Pair& q) const {
     return q.kind == 0
                ? e_.points[std::size_t(q.a)].owner < 0 && e_.triangles[std::size_t(q.b)].owner < 0
@@ -275,7 +265,7 @@ class SurfaceContact {
   // 2. Continuous detection of every candidate; the hits go to hits_ (pair, time of impact).
   bool detect(bool all) {
     hits_.clear();
-    for (const Pair& q : pairs_) {
+    for (const Pair& q : broad_.pairs()) {
       std::array<int, 4> p;
       Scalar gap = 0;
       if (q.kind == 0) {
@@ -294,6 +284,8 @@ class SurfaceContact {
                     moved_[std::size_t(p[2])] || moved_[std::size_t(p[3])]))
         continue;
       if (same_zone(p[0], p[1], p[2], p[3])) continue;
+      // Swept boxes farther apart than the gap along an axis: no contact during the step.
+      if (apart(p, q.kind == 0 ? 1 : 2, gap, true)) continue;
       // The gap first; only a pair it reports needs the start distance (a pair that starts
       // closer keeps half of it): with a smaller gap the CCD could only report less.
       CcdResult<Scalar> r = ccd(q.kind, p, gap);
@@ -317,7 +309,7 @@ class SurfaceContact {
   // distance instead.
   Scalar start_gap(const Pair& q, Scalar gap) const {
     const Stencil s = e_.stencil(q, [&](int i) { return e_.p0(i); });
-    return std::min(gap, s.distance / 2);
+    return s.distance < gap ? s.distance / 2 : gap;
   }
   bool same_zone(int a, int b, int c, int e) {
     if (!zones_active_) return false;
@@ -425,9 +417,7 @@ class SurfaceContact {
   SurfaceElements<Scalar> e_;
   Points<Scalar> velocity_scratch_;
   std::vector<char> moved_;  // points whose end position changed since the last detection
-  std::vector<AlignedBox3<Scalar>> tri_boxes_, edge_boxes_;
-  BoxHash<Scalar> hash_;
-  std::vector<Pair> pairs_;
+  SurfaceCandidates<Scalar> broad_;
   std::vector<Hit> hits_;
   ImpactZones zones_;
   std::vector<int> members_, starts_;

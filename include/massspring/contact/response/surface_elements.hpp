@@ -1,10 +1,10 @@
 #pragma once
 /// @file
 /// @brief SurfaceElements: the work state of surface contact (contact/response/
-/// surface_contact.hpp) over one step: the cloth's points, then the obstacles' (capsule axis
-/// ends, box corners, mesh vertices) at the start and end of the step, their inverse masses, and
-/// the elements that collide: points, edges and triangles. Also the closest-point geometry of a
-/// point-triangle or edge-edge pair (PairStencil).
+/// surface_contact.hpp) over one step: the cloth's points, then the obstacles' (sphere centre,
+/// capsule axis ends, box corners, mesh vertices) at the start and end of the step, their inverse
+/// masses, and the elements that collide: points, edges and triangles. Also the closest-point
+/// geometry of a point-triangle or edge-edge pair (PairStencil).
 ///
 /// An obstacle's points have infinite mass (w = 0) and move with their collider from its pose
 /// at the start of the step to the one at its end. A cloth point the colliders' point response
@@ -110,13 +110,14 @@ struct SurfaceElements {
       if (mark[std::size_t(i)]) points.push_back({{i, -1, -1}, -1});
     for (Eigen::Index e = 0; e < in.edges.rows(); ++e)
       edges.push_back({{in.edges(e, 0), in.edges(e, 1), -1}, -1});
-    const std::size_t cloth_edges = edges.size();
+    const std::size_t cloth_elements = points.size() + edges.size() + triangles.size();
     // Obstacles.
     int next = n;
     gap.assign(std::size_t(in.colliders.size()), 0);
     for (int ci = 0; ci < in.colliders.size(); ++ci)
       next = add_obstacle(in.colliders[ci], ci, next, in.self_collision);
-    any_pairs = in.self_collision.has_value() || edges.size() > cloth_edges;
+    any_pairs = in.self_collision.has_value() ||
+                points.size() + edges.size() + triangles.size() > cloth_elements;
     self = in.self_collision.has_value();
     self_gap = in.self_collision ? in.self_collision->thickness / 10 : Scalar(0);
   }
@@ -167,6 +168,8 @@ struct SurfaceElements {
 
   static int obstacle_points(const Collider<Scalar>& c) {
     switch (c.shape()) {
+      case ColliderShape::Sphere:
+        return 1;
       case ColliderShape::Capsule:
         return 2;
       case ColliderShape::Box:
@@ -187,22 +190,33 @@ struct SurfaceElements {
       x1.row(i) = (c.end_rotation() * local + c.end_translation()).transpose();
       owner[std::size_t(i)] = ci;
     };
-    // The gap kept from an obstacle's axis, edges and faces [m]: half the sum of a capsule's
-    // radius and the thickness (half the distance at which the point response keeps the points),
-    // or, for a box or mesh of no thickness, a quarter of the self-collision thickness (0.25 mm
-    // without it).
-    Scalar keep = (c.radius() * Scalar(c.shape() == ColliderShape::Capsule) + c.thickness()) / 2;
+    // The gap kept from an obstacle's centre, axis, edges and faces [m]: half the sum of a
+    // sphere's or capsule's radius and the thickness (half the distance at which the point
+    // response keeps the points), or, for a box or mesh of no thickness, a quarter of the
+    // self-collision thickness (0.25 mm without it).
+    const bool round = c.shape() == ColliderShape::Sphere || c.shape() == ColliderShape::Capsule;
+    Scalar keep = (c.radius() * Scalar(round) + c.thickness()) / 2;
     if (!(keep > 0)) keep = self_collision ? self_collision->thickness / 4 : Scalar(2.5e-4);
     gap[std::size_t(ci)] = keep;
+    // Every obstacle point also meets the cloth's triangles: a sphere's centre (no cloth
+    // triangle comes nearer than the gap, so no edge cuts through the ball's core), a capsule's
+    // axis ends, a box's corners.
+    const auto point = [&](int i, const V3& local) {
+      place(i, local);
+      points.push_back({{i, -1, -1}, ci});
+    };
     switch (c.shape()) {
+      case ColliderShape::Sphere:
+        point(next, V3::Zero());
+        return next + 1;
       case ColliderShape::Capsule:
-        place(next, -c.axis());
-        place(next + 1, c.axis());
+        point(next, -c.axis());
+        point(next + 1, c.axis());
         edges.push_back({{next, next + 1, -1}, ci});
         return next + 2;
       case ColliderShape::Box: {
         for (int k = 0; k < 8; ++k)
-          place(next + k,
+          point(next + k,
                 V3((k & 1) ? c.axis()(0) : -c.axis()(0), (k & 2) ? c.axis()(1) : -c.axis()(1),
                    (k & 4) ? c.axis()(2) : -c.axis()(2)));
         for (int k = 0; k < 8; ++k)
@@ -213,10 +227,7 @@ struct SurfaceElements {
       case ColliderShape::Mesh: {
         const auto& mesh = *c.triangle_mesh();
         const int m = int(mesh.vertices().rows());
-        for (int k = 0; k < m; ++k) {
-          place(next + k, mesh.vertices().row(k).transpose());
-          points.push_back({{next + k, -1, -1}, ci});
-        }
+        for (int k = 0; k < m; ++k) point(next + k, mesh.vertices().row(k).transpose());
         const Triangles& f = mesh.triangles();
         for (Eigen::Index t = 0; t < f.rows(); ++t)
           triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci});
@@ -236,6 +247,13 @@ struct SurfaceElements {
     return gap[std::size_t(std::max(owner_a, owner_b))];
   }
 
+  // How far an element's box is grown [m]: an obstacle's by its whole gap, the cloth's by
+  // `cloth` (then two boxes overlap whenever the elements are nearer than their pair's gap, as
+  // long as cloth >= half the cloth's own gap).
+  [[nodiscard]] Scalar grow_of(const Element& e, Scalar cloth) const {
+    return e.owner < 0 ? cloth : gap[std::size_t(e.owner)];
+  }
+
   V3 p0(int i) const { return x0.row(i).transpose(); }
   V3 p1(int i) const { return x1.row(i).transpose(); }
   V3 d(int i) const { return (x1.row(i) - x0.row(i)).transpose(); }
@@ -249,6 +267,18 @@ struct SurfaceElements {
     b.lo.array() -= grow;
     b.hi.array() += grow;
     return b;
+  }
+
+  // The pair's four points: the point and the triangle's corners, or both edges' ends.
+  [[nodiscard]] std::array<int, 4> points_of(const Pair& q) const {
+    if (q.kind == 0) {
+      const Element& pe = points[std::size_t(q.a)];
+      const Element& te = triangles[std::size_t(q.b)];
+      return {pe.p[0], te.p[0], te.p[1], te.p[2]};
+    }
+    const Element& ea = edges[std::size_t(q.a)];
+    const Element& eb = edges[std::size_t(q.b)];
+    return {ea.p[0], ea.p[1], eb.p[0], eb.p[1]};
   }
 
   template <class Pos>

@@ -1,0 +1,153 @@
+// contact/response/surface_candidates.hpp against a brute-force list: every point-triangle and
+// edge-edge pair whose grown swept boxes overlap (and that shares no point) is listed once, by
+// full() exactly and by refresh() after rounds that move some end positions by small steps,
+// by large ones (escaping the stored boxes) and by very many (falling back to full()).
+#include <doctest/doctest.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <massspring/contact/response/surface_candidates.hpp>
+#include <massspring/scene/cloth.hpp>
+#include <optional>
+#include <random>
+#include <set>
+#include <tuple>
+#include <vector>
+
+namespace {
+namespace contact = massspring::contact;
+using Box = contact::AlignedBox3<double>;
+using PairSet = std::set<std::tuple<int, int, int>>;
+
+// The swept box of points `ids` over x0 -> x1, grown by g: written apart from SurfaceElements.
+Box swept(const massspring::Points<double>& x0, const massspring::Points<double>& x1,
+          std::initializer_list<int> ids, double g) {
+  Box b{x0.row(*ids.begin()).transpose(), x0.row(*ids.begin()).transpose()};
+  for (int i : ids) {
+    b.lo = b.lo.cwiseMin(x0.row(i).transpose()).cwiseMin(x1.row(i).transpose());
+    b.hi = b.hi.cwiseMax(x0.row(i).transpose()).cwiseMax(x1.row(i).transpose());
+  }
+  b.lo.array() -= g;
+  b.hi.array() += g;
+  return b;
+}
+
+// Every pair of the cloth (self-collision on, no obstacle) whose boxes overlap.
+PairSet brute_force(const contact::SurfaceElements<double>& e, double g) {
+  PairSet out;
+  const auto& x0 = e.x0;
+  const auto& x1 = e.x1;
+  for (std::size_t v = 0; v < e.points.size(); ++v) {
+    const int i = e.points[v].p[0];
+    const Box bp = swept(x0, x1, {i}, g);
+    for (std::size_t t = 0; t < e.triangles.size(); ++t) {
+      const auto& c = e.triangles[t].p;
+      if (i == c[0] || i == c[1] || i == c[2]) continue;
+      if (bp.overlaps(swept(x0, x1, {c[0], c[1], c[2]}, g))) out.insert({0, int(v), int(t)});
+    }
+  }
+  for (std::size_t a = 0; a < e.edges.size(); ++a)
+    for (std::size_t b = a + 1; b < e.edges.size(); ++b) {
+      const auto& p = e.edges[a].p;
+      const auto& q = e.edges[b].p;
+      if (p[0] == q[0] || p[0] == q[1] || p[1] == q[0] || p[1] == q[1]) continue;
+      if (swept(x0, x1, {p[0], p[1]}, g).overlaps(swept(x0, x1, {q[0], q[1]}, g)))
+        out.insert({1, int(a), int(b)});
+    }
+  return out;
+}
+
+PairSet listed(const std::vector<contact::ElementPair>& pairs) {
+  PairSet out;
+  for (const auto& q : pairs) {
+    const bool fresh = out.insert({q.kind, q.a, q.b}).second;
+    REQUIRE(fresh);  // each pair once
+  }
+  return out;
+}
+
+struct Crumpled {
+  massspring::Points<double> x0, x1, v;
+  massspring::Vector<double> masses;
+  massspring::Triangles triangles;
+  massspring::Edges edges;
+};
+
+// A 9 x 9 cloth of 10 cm crumpled by random end positions.
+Crumpled crumpled(std::mt19937& rng) {
+  massspring::ClothOptions o;
+  o.columns = o.rows = 9;
+  o.width = o.height = 0.1;
+  o.shear = massspring::ClothShear::One;
+  const auto cloth = massspring::make_cloth(o);
+  Crumpled c;
+  c.x0 = cloth.vertices;
+  c.x1 = cloth.vertices;
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  for (Eigen::Index i = 0; i < c.x1.rows(); ++i)
+    for (int k = 0; k < 3; ++k) c.x1(i, k) += jitter(rng);
+  c.v = massspring::Points<double>::Zero(c.x0.rows(), 3);
+  c.masses = massspring::Vector<double>::Ones(c.x0.rows());
+  c.triangles.resize(Eigen::Index(cloth.faces.size()), 3);
+  for (std::size_t f = 0; f < cloth.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) c.triangles(Eigen::Index(f), k) = cloth.faces[f][std::size_t(k)];
+  c.edges = massspring::Edges(0, 2);
+  return c;
+}
+}  // namespace
+
+TEST_CASE("SurfaceCandidates: full() and refresh() list every overlapping pair once") {
+  std::mt19937 rng(3);
+  Crumpled c = crumpled(rng);
+  REQUIRE(c.triangles.rows() > 0);
+  massspring::Edges edges;
+  {
+    std::vector<std::pair<int, int>> list;
+    massspring::detail::triangle_edges(c.triangles, list);
+    edges.resize(Eigen::Index(list.size()), 2);
+    for (std::size_t k = 0; k < list.size(); ++k)
+      edges.row(Eigen::Index(k)) << list[k].first, list[k].second;
+  }
+  const std::vector<int> pinned;
+  const std::optional<contact::SelfCollision<double>> self = contact::SelfCollision<double>{};
+  const contact::ColliderSet<double> colliders;
+  const contact::SurfaceContactInput<double> in{c.x0,   c.x1,        c.v,   1.0 / 30, c.masses,
+                                                pinned, c.triangles, edges, self,     colliders};
+  contact::SurfaceElements<double> e;
+  e.setup(in);
+  const double grow = 0.002, margin = 0.002;
+  contact::SurfaceCandidates<double> broad;
+  broad.full(e, grow, margin);
+  CHECK(listed(broad.pairs()) == brute_force(e, grow));
+  REQUIRE(broad.full_count() == 1);
+
+  std::vector<char> moved(std::size_t(e.x1.rows()), 0);
+  const auto round = [&](int count, double step) {
+    std::fill(moved.begin(), moved.end(), char(0));
+    std::uniform_int_distribution<int> pick(0, int(e.x1.rows()) - 1);
+    std::uniform_real_distribution<double> by(-step, step);
+    for (int k = 0; k < count; ++k) {
+      const int i = pick(rng);
+      for (int a = 0; a < 3; ++a) e.x1(i, a) += by(rng);
+      moved[std::size_t(i)] = 1;
+    }
+    broad.refresh(e, moved);
+    // A superset of the pairs of the true boxes (refresh() may keep some farther apart).
+    const PairSet got = listed(broad.pairs());
+    const PairSet want = brute_force(e, grow);
+    CHECK(std::includes(got.begin(), got.end(), want.begin(), want.end()));
+  };
+  SUBCASE("small steps stay in the stored boxes: no new full()") {
+    for (int r = 0; r < 4; ++r) round(5, margin / 4);
+    CHECK(broad.full_count() == 1);
+  }
+  SUBCASE("large steps escape: listed directly, still every pair") {
+    for (int r = 0; r < 4; ++r) round(3, 0.03);
+    CHECK(broad.full_count() == 1);
+  }
+  SUBCASE("most points escape: full() again") {
+    round(400, 0.03);
+    CHECK(broad.full_count() == 2);
+    round(2, 0.03);
+  }
+}
