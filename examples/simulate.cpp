@@ -1,15 +1,16 @@
 // massspring-simulate: runs a scene (a JSON+OBJ file, a FOSSSim XML file, a state file it saved,
 // or a generated scene), writes OBJ frames and a CSV trajectory, and prints the time per step.
 //
-//   massspring-simulate examples/scenes/flag.json --frames 300 --out frames --csv traj.csv
+//   massspring-simulate examples/scenes/flag.json --duration 10 --every 3 --out frames
+//       (10 s at dt 1/30: 300 steps, a frame written every 3rd: frames 0, 3, ..., 300)
 //   massspring-simulate --generate cloth:60x50 --acceleration chebyshev --iterations 10
 //   massspring-simulate flag.json --gravity 0,0,0 --force 0,-9.8,0 --pins penalty
 //       (the assignment's conventions, for its own scenes)
 //   massspring-simulate examples/scenes_xml/orbit.xml --integrator forward-euler --every 10 --out f
 //       (an XML scene runs with the integrator it names, its dt, for its duration, unless the
 //        options say otherwise)
-//   massspring-simulate flag.json --frames 10 --save-state s.json
-//   massspring-simulate s.json --frames 10       (continues bit for bit: frames 11..20)
+//   massspring-simulate flag.json --steps 10 --save-state s.json
+//   massspring-simulate s.json --steps 10        (continues bit for bit: frames 11..20)
 //   massspring-simulate examples/scenes/drape.json --self-collision 0.005
 //       (self-collision of the cloth's surface, 5 mm thick; needs a scene with polygons)
 //
@@ -33,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "simulate/did_you_mean.hpp"
 #include "simulate/numbers.hpp"
 #include "simulate/run.hpp"
 
@@ -108,6 +110,7 @@ int run_scene(const Config& c) {
     s.fosssim = std::move(loaded.fosssim);
     s.state = loaded.state;
     s.run_data = std::move(loaded.run);
+    s.dt = loaded.dt;
   }
   return simulate::run(c, s);
 }
@@ -117,7 +120,7 @@ int run_scene(const Config& c) {
 int main(int argc, char** argv) {
   Config c;
   // Numbers are taken as text and read by simulate/numbers.hpp (messages quote the text).
-  std::string frames = "300", dt = "0.0333333", shrink = "0", iterations = "50", tolerance = "0",
+  std::string steps = "300", frames, duration, progress = "10", dt = "0.0333333", shrink = "0", iterations = "50", tolerance = "0",
               penalty_weight = "1e10", every = "1", guard_growth = "100", rho = "0", gamma = "1",
               delay = "2", estimate = "100", window = "5", threads = "1", newton_iterations = "20",
               newton_tolerance = "1e-10", save_every = "0", self_collision;
@@ -134,14 +137,20 @@ int main(int argc, char** argv) {
   app.add_option("--generate", c.generate,
                  "Generate the scene instead: cloth[:COLSxROWS], chain[:POINTS], net[:COLSxROWS]")
       ->default_str("none");
-  auto* o_frames =
-      app.add_option("--frames", frames,
-                     "Steps to simulate (XML scenes: ceil(duration / dt); a saved state: steps "
-                     "after it)")
-          ->capture_default_str();
+  // The length of the run: one of --steps, --frames, --duration (a saved state: after it).
+  auto* o_steps = app.add_option("--steps", steps,
+                                 "Steps of --dt to take (default when none of --steps, --frames, "
+                                 "--duration is given; an XML scene: its duration / dt)")
+                      ->capture_default_str();
+  auto* o_frames = app.add_option("--frames", frames,
+                                  "Frames to write after the first: takes FRAMES x --every steps")
+                       ->default_str("none");
+  auto* o_duration = app.add_option("--duration", duration,
+                                    "Simulated time [s]: takes duration / dt steps, rounded up")
+                         ->default_str("none");
   auto* o_dt = app.add_option("--dt", dt,
-                              "Time step [s] (default 1/30; XML scenes: the scene's; a saved "
-                              "state: its run's)")
+                              "Time step [s] (default: a scene's own, its \"dt\" or an XML "
+                              "scene's; a saved state: its run's; else 1/30)")
                    ->capture_default_str();
   auto* o_integrator =
       app.add_option("--integrator", c.integrator,
@@ -228,8 +237,8 @@ int main(int argc, char** argv) {
                               "(not for XML scenes or saved states: they carry their own)");
   auto* o_gravity = add_vector3("--gravity", gravity,
                                 "Acceleration of every point [m/s^2], GX,GY,GZ, added as a "
-                                "Gravity term (not for XML scenes or saved states: they carry "
-                                "their own)");
+                                "Gravity term (not for scenes that carry their own: XML scenes, "
+                                "saved states, JSON scenes with \"gravity\")");
   auto* o_self_collision =
       app.add_option("--self-collision", self_collision,
                      "Self-collision of the surface (the scene's polygons) with this thickness "
@@ -250,11 +259,17 @@ int main(int argc, char** argv) {
                  "Save the final state here (a .json scene that resumes the run bit for bit)")
       ->default_str("none");
   app.add_option("--save-every", save_every,
-                 "Also save the state every N frames (0: at the end only)")
+                 "Also save the state every N steps (0: at the end only)")
       ->capture_default_str();
   app.add_flag("--overwrite", c.overwrite,
                "Replace existing output files, a stale .tmp, and the frame files in --out");
-  app.add_option("--every", every, "Write every Nth frame (and the last)")->capture_default_str();
+  app.add_option("--every", every,
+                 "Write a frame every N steps (and the last); frame files are numbered by step")
+      ->capture_default_str();
+  app.add_option("--progress", progress,
+                 "Print a progress line (step, simulated time, time left) every this many "
+                 "seconds of wall-clock time [s]; 0: never (--quiet: never)")
+      ->capture_default_str();
   app.add_option("--guard-growth", guard_growth,
                  "Stop when the total energy passes E(0) + G x scale (DivergenceGuard; the step "
                  "times then include its energy check); 0 turns the check off")
@@ -263,7 +278,8 @@ int main(int argc, char** argv) {
 
   // --help names what each value is (all numbers are taken as text, see above).
   for (CLI::Option* o : app.get_options()) {
-    static const std::vector<std::string> whole = {"--frames",
+    static const std::vector<std::string> whole = {"--steps",
+                                                   "--frames",
                                                    "--iterations",
                                                    "--chebyshev-delay",
                                                    "--chebyshev-estimate-iterations",
@@ -273,6 +289,8 @@ int main(int argc, char** argv) {
                                                    "--every",
                                                    "--save-every"};
     static const std::vector<std::string> real = {"--dt",
+                                                  "--duration",
+                                                  "--progress",
                                                   "--shrink",
                                                   "--tolerance",
                                                   "--penalty-weight",
@@ -294,12 +312,20 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "massspring-simulate: %s (see --help)\n", e.what());
+    std::fprintf(stderr, "massspring-simulate: %s%s (see --help)\n", e.what(),
+                 e.get_exit_code() == static_cast<int>(CLI::ExitCodes::ExtrasError)
+                     ? simulate::did_you_mean(app, argc, argv).c_str()
+                     : "");
     return simulate::kExitBadInput;
   }
 
   try {
-    c.frames_given = o_frames->count() > 0;
+    std::vector<std::string> lengths;
+    for (CLI::Option* o : {o_steps, o_frames, o_duration})
+      if (o->count() > 0) lengths.push_back(o->get_name());
+    if (lengths.size() > 1)
+      throw Error(lengths[0] + " and " + lengths[1] +
+                  ": give one of --steps, --frames and --duration");
     c.dt_given = o_dt->count() > 0;
     c.integrator_given = o_integrator->count() > 0;
     c.gravity_given = o_gravity->count() > 0;
@@ -312,7 +338,17 @@ int main(int argc, char** argv) {
         if (o->count() > 0) names->push_back(o->get_name());
     using simulate::parse_integer;
     using simulate::parse_number;
-    c.frames = int(parse_integer("--frames", frames, 0, 100000000));
+    if (o_steps->count() > 0) {
+      c.length = simulate::Length::Steps;
+      c.steps = parse_integer("--steps", steps, 0, 100000000);
+    } else if (o_frames->count() > 0) {
+      c.length = simulate::Length::Frames;
+      c.frames = parse_integer("--frames", frames, 0, 100000000);
+    } else if (o_duration->count() > 0) {
+      c.length = simulate::Length::Duration;
+      c.duration = parse_number("--duration", duration, Bound::NonNegative);
+    }
+    c.progress = parse_number("--progress", progress, Bound::NonNegative);
     c.dt = c.dt_given ? parse_number("--dt", dt, Bound::Positive) : 1.0 / 30;
     c.shrink = parse_number("--shrink", shrink, Bound::NonNegative);
     c.iterations = int(parse_integer("--iterations", iterations, 1, 1000000));

@@ -103,6 +103,13 @@ void check_idle(const void* object, const char* what);
 void bind_errors(py::module_& m);                // module.cpp
 void bind_system(py::module_& m);                // system.cpp
 void bind_forces(py::module_& m);                // forces.cpp (after bind_system)
+/// @brief An argument read by the numpy input functions above (any array-like), named
+/// "ArrayLike" in signatures and help() instead of pybind11's "handle".
+struct ArrayLike {
+  py::object value;
+  operator py::handle() const { return value; }  // NOLINT: passed on as it is
+};
+
 void bind_colliders(py::module_& m);             // colliders.cpp (after bind_system)
 void bind_step_report(py::module_& m);           // module.cpp
 void bind_fast_mass_spring(py::module_& m);      // fast_mass_spring.cpp
@@ -118,3 +125,20 @@ inline py::class_<System> system_class(py::module_& m) {
 }
 
 }  // namespace massspring::python
+
+namespace pybind11::detail {
+
+/// @brief Takes any Python object as an ArrayLike (checked by the function that reads it).
+template <>
+struct type_caster<massspring::python::ArrayLike> {
+  PYBIND11_TYPE_CASTER(massspring::python::ArrayLike, const_name("ArrayLike"));
+  bool load(handle source, bool) {
+    value.value = reinterpret_borrow<object>(source);
+    return true;
+  }
+  static handle cast(const massspring::python::ArrayLike& a, return_value_policy, handle) {
+    return a.value.inc_ref();
+  }
+};
+
+}  // namespace pybind11::detail

@@ -35,25 +35,25 @@ velocities in m/s, angular velocities in rad/s. Made by the static methods plane
 box and mesh; the set_* methods validate, change the collider and return it (chainable).)doc");
   c.def_static(
        "plane",
-       [](const py::handle& point, const py::handle& normal) {
+       [](const ArrayLike& point, const ArrayLike& normal) {
          return Collider::plane(vector3(point, "plane: point"), vector3(normal, "plane: normal"));
        },
        py::arg("point"), py::arg("normal"), "The half-space on the normal's side is free.")
       .def_static(
           "sphere",
-          [](const py::handle& center, double radius) {
+          [](const ArrayLike& center, double radius) {
             return Collider::sphere(vector3(center, "sphere: center"), radius);
           },
           py::arg("center"), py::arg("radius"))
       .def_static(
           "capsule",
-          [](const py::handle& a, const py::handle& b, double radius) {
+          [](const ArrayLike& a, const ArrayLike& b, double radius) {
             return Collider::capsule(vector3(a, "capsule: a"), vector3(b, "capsule: b"), radius);
           },
           py::arg("a"), py::arg("b"), py::arg("radius"))
       .def_static(
           "box",
-          [](const py::handle& center, const py::handle& half_extents, const py::handle& wxyz) {
+          [](const ArrayLike& center, const ArrayLike& half_extents, const ArrayLike& wxyz) {
             const Vec q = real_vector(wxyz, "box: rotation (w, x, y, z)", 4);
             return Collider::box(vector3(center, "box: center"),
                                  vector3(half_extents, "box: half_extents"),
@@ -64,7 +64,7 @@ box and mesh; the set_* methods validate, change the collider and return it (cha
           "A box; rotation a quaternion (w, x, y, z), normalised.")
       .def_static(
           "mesh",
-          [](const py::handle& vertices, const py::handle& triangles) {
+          [](const ArrayLike& vertices, const ArrayLike& triangles) {
             const AnyMatrix v = real_matrix(vertices, "mesh collider: vertices", 3);
             const IndexMatrix t = index_matrix(triangles, "mesh collider: triangles", 3);
             return Collider::mesh(v, t);
@@ -90,7 +90,7 @@ box and mesh; the set_* methods validate, change the collider and return it (cha
            "Contact distance added to the surface [m].")
       .def(
           "set_pose",
-          [](Collider& k, const py::handle& rotation, const py::handle& translation) -> Collider& {
+          [](Collider& k, const ArrayLike& rotation, const ArrayLike& translation) -> Collider& {
             return k.set_pose(matrix3(rotation, "pose: rotation"),
                               vector3(translation, "pose: translation"));
           },
@@ -98,13 +98,13 @@ box and mesh; the set_* methods validate, change the collider and return it (cha
           "Rotation (3, 3) and translation [m] of the collider's frame.")
       .def(
           "set_velocity",
-          [](Collider& k, const py::handle& v) -> Collider& {
+          [](Collider& k, const ArrayLike& v) -> Collider& {
             return k.set_velocity(vector3(v, "velocity"));
           },
           py::arg("velocity"), py::return_value_policy::reference_internal)
       .def(
           "set_angular_velocity",
-          [](Collider& k, const py::handle& w) -> Collider& {
+          [](Collider& k, const ArrayLike& w) -> Collider& {
             return k.set_angular_velocity(vector3(w, "angular_velocity"));
           },
           py::arg("angular_velocity"), py::return_value_policy::reference_internal);

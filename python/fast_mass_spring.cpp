@@ -34,7 +34,15 @@ void bind_fast_mass_spring(py::module_& m) {
                         "FastMassSpring's options (integrators/local_global/options.hpp); read at "
                         "every step, checked there (massspring.Error).");
   o.def(py::init<>())
-      .def_readwrite("iterations", &Options::iterations, "Most iterations per step (>= 1).")
+      .def_property(
+          "iterations", [](const Options& x) { return x.iterations; },
+          [](Options& x, int n) {
+            if (n < 1)  // the message step() would give, at the assignment
+              throw Error(detail::message("FastMassSpring: options.iterations must be >= 1, got ",
+                                          n));
+            x.iterations = n;
+          },
+          "Most iterations per step (>= 1; checked when set).")
       .def_readwrite("tolerance", &Options::tolerance,
                      "Stop when the relative energy decrease is <= this (0: never).")
       .def_readwrite("pins", &Options::pins)
@@ -49,8 +57,16 @@ void bind_fast_mass_spring(py::module_& m) {
           "A force [N] on every point (a copy: assign the whole vector).")
       .def_property(
           "gravity", [](const Options& x) { return copy_array(x.gravity, true); },
-          [](Options& x, const py::handle& g) { x.gravity = vector3(g, "options.gravity"); },
-          "An acceleration [m/s^2] of every point (a copy: assign the whole vector).")
+          [](Options& x, const py::handle& g) {
+            x.gravity = vector3(g, "options.gravity");
+            if (!x.gravity.isZero())
+              py::module_::import("warnings")
+                  .attr("warn")("options.gravity is deprecated: add massspring.Gravity to the "
+                                "system instead (with both, gravity acts twice)",
+                                py::module_::import("builtins").attr("DeprecationWarning"), 2);
+          },
+          "Deprecated: add a Gravity term to the system. An acceleration [m/s^2] of every point, "
+          "on top of the system's terms (a copy: assign the whole vector).")
       .def_readwrite("initial_guess", &Options::initial_guess)
       .def_readwrite("acceleration", &Options::acceleration)
       .def_readwrite("chebyshev_rho", &Options::chebyshev_rho, "In [0, 1); 0: estimated.")

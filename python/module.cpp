@@ -40,6 +40,12 @@ void bind_errors(py::module_& m) {
 }
 
 void bind_step_report(py::module_& m) {
+  py::enum_<Convergence>(m, "Convergence",
+                         "Whether a step tested a tolerance, and met it (NotTested is not a "
+                         "failure: no tolerance was asked for).")
+      .value("NotTested", Convergence::NotTested)
+      .value("Converged", Convergence::Converged)
+      .value("NotConverged", Convergence::NotConverged);
   py::class_<StepReport>(m, "StepReport", "What one step did (integrators/step_report.hpp).")
       .def(py::init<>())
       .def_readonly("iterations", &StepReport::iterations, "Iterations (local-global or Newton).")
@@ -47,7 +53,10 @@ void bind_step_report(py::module_& m) {
                     "Relative energy decrease of the last iteration (NaN when not tracked).")
       .def_readonly("energy", &StepReport::energy, "Final energy where tracked, else NaN.")
       .def_readonly("residual", &StepReport::residual, "Final residual where tracked, else NaN.")
-      .def_readonly("converged", &StepReport::converged)
+      .def_readonly("converged", &StepReport::converged,
+                    "True when the tolerance was met (never when no tolerance was asked for).")
+      .def_readonly("convergence", &StepReport::convergence,
+                    "Convergence.NotTested (no tolerance asked), Converged or NotConverged.")
       .def_readonly("finite", &StepReport::finite)
       .def_readonly("refactorized", &StepReport::refactorized)
       .def_readonly("factorization_failed", &StepReport::factorization_failed)
@@ -62,7 +71,10 @@ void bind_step_report(py::module_& m) {
            "finite, not blown up, the factorisation succeeded and the contact was resolved")
       .def("__repr__", [](const StepReport& r) {
         return detail::message("StepReport(iterations=", r.iterations,
-                               ", converged=", r.converged ? "True" : "False",
+                               ", convergence=",
+                               r.convergence == Convergence::NotTested   ? "NotTested"
+                               : r.convergence == Convergence::Converged ? "Converged"
+                                                                         : "NotConverged",
                                ", finite=", r.finite ? "True" : "False",
                                ", refactorized=", r.refactorized ? "True" : "False",
                                ", factorization_failed=", r.factorization_failed ? "True" : "False",

@@ -55,6 +55,8 @@ void bind_scene_files(py::module_& m) {
           "edges", [](const Loaded& s) { return copy_edges(s.edges); }, "(k, 2) segments to draw.")
       .def_readonly("files", &Loaded::files, "Every file read.")
       .def_readonly("state", &Loaded::state, "True for a state saved by write_scene.")
+      .def_readonly("dt", &Loaded::dt,
+                    "A JSON+OBJ scene's \"dt\": the step it is meant to run at [s], or None.")
       .def_property_readonly(
           "fosssim",
           [](const Loaded& s) -> std::optional<XmlRun> {

@@ -10,6 +10,48 @@ namespace {
 
 using Scene = SceneDescription<double>;
 
+// Options(**fields): a default T with the named fields set through their Python attributes (so
+// each is converted and checked as an assignment is); an unknown name is a TypeError listing the
+// fields.
+template <class T>
+T from_fields(const py::kwargs& fields, const char* type) {
+  T value{};
+  const py::object self = py::cast(&value, py::return_value_policy::reference);
+  for (const auto& [key, field] : fields) {
+    const std::string name = py::str(key);
+    if (name.rfind('_', 0) == 0 || !py::hasattr(self, name.c_str())) {
+      std::string known;
+      for (const py::handle a : py::module_::import("builtins").attr("dir")(self)) {
+        const std::string attribute = py::str(a);
+        if (attribute.rfind('_', 0) != 0) known += (known.empty() ? "" : ", ") + attribute;
+      }
+      throw py::type_error(std::string(type) + "() has no field \"" + name + "\" (fields: " +
+                           known + ")");
+    }
+    py::setattr(self, key, field);
+  }
+  return value;
+}
+
+// An optional point [m] of a generator's options: None or three numbers.
+template <class T>
+void optional_point(py::class_<T>& c, const char* name, std::optional<Vec3> T::*member,
+                    const char* doc) {
+  c.def_property(
+      name,
+      [member](const T& o) -> py::object {
+        if (!(o.*member)) return py::none();
+        return copy_array(*(o.*member), true);
+      },
+      [member, name](T& o, const py::handle& v) {
+        if (v.is_none())
+          (o.*member).reset();
+        else
+          o.*member = vector3(v, name);
+      },
+      doc);
+}
+
 }  // namespace
 
 void bind_scenes(py::module_& m) {
@@ -32,6 +74,22 @@ void bind_scenes(py::module_& m) {
       .def_readwrite("self_collision", &Scene::self_collision,
                      "A SelfCollision, or None (off); make_system applies it, after giving the "
                      "system its surface (the faces split into fans).")
+      .def_property(
+          "gravity",
+          [](const Scene& s) -> py::object {
+            if (!s.gravity) return py::none();
+            return copy_array(*s.gravity, true);
+          },
+          [](Scene& s, const py::handle& g) {
+            if (g.is_none())
+              s.gravity.reset();
+            else
+              s.gravity = vector3(g, "gravity");
+          },
+          "Acceleration of gravity [m/s^2] (the JSON key \"gravity\"), or None; make_system adds "
+          "it as a Gravity term.")
+      .def_readwrite("dt", &Scene::dt,
+                     "The step the scene is meant to run at [s] (the JSON key \"dt\"), or None.")
       .def_property_readonly(
           "num_colliders", [](const Scene& s) { return int(s.colliders.size()); },
           "Colliders the scene describes (made by make_system).");
@@ -56,8 +114,11 @@ void bind_scenes(py::module_& m) {
       .value("Corners", NetPins::Corners)
       .value("Border", NetPins::Border);
 
-  py::class_<ClothOptions>(m, "ClothOptions", "make_cloth's options (scene/cloth.hpp).")
-      .def(py::init<>())
+  py::class_<ClothOptions> cloth(m, "ClothOptions",
+                                 "make_cloth's options (scene/cloth.hpp); ClothOptions(columns=30, "
+                                 "rows=20, center=[0, 1, 0]) sets fields by name.");
+  cloth
+      .def(py::init([](const py::kwargs& f) { return from_fields<ClothOptions>(f, "ClothOptions"); }))
       .def_readwrite("columns", &ClothOptions::columns)
       .def_readwrite("rows", &ClothOptions::rows)
       .def_readwrite("width", &ClothOptions::width, "[m]")
@@ -68,8 +129,15 @@ void bind_scenes(py::module_& m) {
       .def_readwrite("plane", &ClothOptions::plane)
       .def_readwrite("stiffness", &ClothOptions::stiffness, "[N/m]")
       .def_readwrite("mass", &ClothOptions::mass, "[kg] per point, or None: Voronoi masses");
-  py::class_<ChainOptions>(m, "ChainOptions", "make_chain's options (scene/chain.hpp).")
-      .def(py::init<>())
+  optional_point(cloth, "origin", &ClothOptions::origin,
+                 "Where point (0, 0) lies [m], or None: the origin. Not with center.");
+  optional_point(cloth, "center", &ClothOptions::center,
+                 "Where the middle of the cloth lies [m], or None. Not with origin.");
+  py::class_<ChainOptions> chain(m, "ChainOptions",
+                                 "make_chain's options (scene/chain.hpp); fields by name as in "
+                                 "ChainOptions(points=12).");
+  chain
+      .def(py::init([](const py::kwargs& f) { return from_fields<ChainOptions>(f, "ChainOptions"); }))
       .def_readwrite("points", &ChainOptions::points)
       .def_readwrite("length", &ChainOptions::length, "[m]")
       .def_property(
@@ -79,8 +147,14 @@ void bind_scenes(py::module_& m) {
       .def_readwrite("pins", &ChainOptions::pins)
       .def_readwrite("stiffness", &ChainOptions::stiffness, "[N/m]")
       .def_readwrite("mass", &ChainOptions::mass, "[kg] per point");
-  py::class_<NetOptions>(m, "NetOptions", "make_net's options (scene/net.hpp).")
-      .def(py::init<>())
+  optional_point(chain, "origin", &ChainOptions::origin,
+                 "Where point 0 lies [m], or None: the origin. Not with center.");
+  optional_point(chain, "center", &ChainOptions::center,
+                 "Where the middle of the chain lies [m], or None. Not with origin.");
+  py::class_<NetOptions> net(m, "NetOptions",
+                             "make_net's options (scene/net.hpp); fields by name as in "
+                             "NetOptions(columns=6, rows=5).");
+  net.def(py::init([](const py::kwargs& f) { return from_fields<NetOptions>(f, "NetOptions"); }))
       .def_readwrite("columns", &NetOptions::columns)
       .def_readwrite("rows", &NetOptions::rows)
       .def_readwrite("width", &NetOptions::width, "[m]")
@@ -88,6 +162,10 @@ void bind_scenes(py::module_& m) {
       .def_readwrite("pins", &NetOptions::pins)
       .def_readwrite("stiffness", &NetOptions::stiffness, "[N/m]")
       .def_readwrite("mass", &NetOptions::mass, "[kg] per point");
+  optional_point(net, "origin", &NetOptions::origin,
+                 "Where point (0, 0) lies [m], or None: the origin. Not with center.");
+  optional_point(net, "center", &NetOptions::center,
+                 "Where the middle of the net lies [m], or None. Not with origin.");
 
   m.def("make_cloth", &make_cloth, py::arg("options") = ClothOptions{},
         "A rectangular cloth (a SceneDescription).");

@@ -144,7 +144,16 @@ Invalid input raises massspring.Error and builds nothing.)doc");
       py::arg("i"), py::arg("target"), "Pins point i at target [m] (or moves its target).");
   c.def(
       "pin",
-      [](System& s, const py::handle& points) { idle(s, "pin").pin(index_vector(points, "pin")); },
+      [](System& s, const py::handle& points) {
+        // a lone number that is not an int (1.0, numpy's float64): say what pin takes
+        if (py::isinstance<py::float_>(points) ||
+            (py::hasattr(points, "ndim") && py::int_(points.attr("ndim")).cast<int>() == 0 &&
+             !py::isinstance<py::int_>(points)))
+          throw Error("pin: expected a point index (an int) or a list of them, got " +
+                      std::string(py::repr(points)) + " (" +
+                      std::string(py::str(points.get_type().attr("__name__"))) + ")");
+        idle(s, "pin").pin(index_vector(points, "pin"));
+      },
       py::arg("points"), "Pins each listed point at its rest position.");
   c.def(
       "unpin", [](System& s, int i) { idle(s, "unpin").unpin(i); }, py::arg("i"),

@@ -52,16 +52,16 @@ render "$out/damping" --frame-time 0.05 --panels 4 --png "$images/ex_damping_ser
 
 # The assignment-like 3D scenes with the local-global solver, gravity 9.8 m/s^2, dt = 1/30.
 for scene in chain net; do
-  "$simulate" "examples/scenes/$scene.json" --frames 90 --every 3 --out "$out/$scene"
+  "$simulate" "examples/scenes/$scene.json" --steps 90 --every 3 --out "$out/$scene"
   render "$out/$scene" --panels 4 --png "$images/ex_$scene.png"
 done
-"$simulate" examples/scenes/flag.json --frames 90 --every 10 --iterations 20 --out "$out/flag"
+"$simulate" examples/scenes/flag.json --steps 90 --every 10 --iterations 20 --out "$out/flag"
 render "$out/flag" --panels 4 --png "$images/ex_flag.png" --gif "$images/ex_flag.gif"
 
 # Contact with obstacles (docs/contact.md): the local-global solver, dt = 1/200 s (the motion per step
 # stays below the points' spacing), 2 s; the colliders drawn from each scene.
 for scene in drape table tilted mesh; do
-  "$simulate" "examples/scenes/$scene.json" --frames 400 --dt 0.005 --every 10 --out "$out/$scene"
+  "$simulate" "examples/scenes/$scene.json" --duration 2 --dt 0.005 --every 10 --out "$out/$scene"
   render "$out/$scene" --dt 0.005 --panels 4 --size 2.4 --scene "examples/scenes/$scene.json" \
     --png "$images/ex_$scene.png" --gif "$images/ex_$scene.gif" --fps 10
 done

@@ -1,23 +1,47 @@
 #!/usr/bin/env bash
-# Installs the Debian packages massspring's build, tests, benchmarks and demo need.
+# Installs the Debian packages massspring needs: `scripts/setup.sh` everything the build, tests,
+# benchmarks, fuzzing and demo use (scripts/test.sh); `scripts/setup.sh demo` only what
+# scripts/demo.sh uses (compiler, CMake, the library's and massspring-simulate's dependencies,
+# matplotlib); `--print` lists the packages of the set instead of installing them.
 # Idempotent: does nothing when everything is there; runs apt-get update only when something is
 # missing. Uses sudo when not root.
 set -euo pipefail
 
-packages=(
+demo=(
   build-essential cmake ccache      # compiler, build system, compiler cache
   libeigen3-dev                     # the library's one dependency
   nlohmann-json3-dev                # massspring::io: JSON scenes
   libpugixml-dev                    # massspring::io: FOSSSim XML scenes
   libcli11-dev                      # examples: command lines
+  python3 python3-matplotlib        # rendering pictures of frames
+)
+more=(
   doctest-dev                       # tests
   libbenchmark-dev                  # benchmarks
   libsuitesparse-dev                # benchmarks: CHOLMOD compared (optional for the library)
-  python3 python3-matplotlib        # rendering pictures of frames
   pybind11-dev python3-dev python3-numpy  # the Python module (python/)
   python3-pytest                    # the Python module's tests (tests/python/)
   clang libclang-rt-14-dev          # fuzzing (scripts/fuzz.sh): clang++ and libFuzzer
 )
+
+set_name=all
+print=0
+for arg in "$@"; do
+  case "$arg" in
+    demo | all) set_name=$arg ;;
+    --print) print=1 ;;
+    *)
+      echo "setup: unknown argument \"$arg\" (expected demo, all or --print)" >&2
+      exit 1
+      ;;
+  esac
+done
+packages=("${demo[@]}")
+[ "$set_name" = demo ] || packages+=("${more[@]}")
+if [ "$print" = 1 ]; then
+  printf '%s\n' "${packages[@]}"
+  exit 0
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -52,17 +52,19 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
     parser.add_argument("--scene", default=os.path.join(ROOT, "examples", "scenes", "drape.json"))
     parser.add_argument("--frames", type=int, default=300)
-    parser.add_argument("--dt", type=float, default=0.005, help="time step [s]")
+    parser.add_argument("--dt", type=float, help="time step [s] (default: the scene's \"dt\", "
+                        "else 0.005)")
     parser.add_argument("--iterations", type=int, default=50)
     parser.add_argument("--png", default=os.path.join("out", "python", "drape.png"))
     args = parser.parse_args()
 
     loaded = ms.load_scene_file(args.scene)
     system = loaded.system
-    system.add_force(ms.Gravity([0, -9.8, 0]))  # [m/s^2], on each point's mass
+    if "gravity" not in system.forces:  # drape.json carries its own
+        system.add_force(ms.Gravity([0, -9.8, 0]))  # [m/s^2], on each point's mass
     solver = ms.FastMassSpring()
     solver.options.iterations = args.iterations
-    dt = args.dt  # [s]
+    dt = args.dt or loaded.dt or 0.005  # [s]
     solver.precompute(system, dt)
 
     panels = sorted({0, args.frames // 3, 2 * args.frames // 3, args.frames})

@@ -19,7 +19,10 @@
 #include <type_traits>
 #include <vector>
 
+#include "simulate/config.hpp"
 #include "simulate/outputs.hpp"
+#include "simulate/progress.hpp"
+#include "simulate/stability_hint.hpp"
 
 namespace simulate {
 
@@ -43,68 +46,6 @@ inline void install_interrupt_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-struct Config {
-  std::string scene;     // a .json or .xml scene file, or empty
-  std::string generate;  // cloth[:CxR], chain[:N], net[:CxR], or empty
-  int frames = 300;
-  bool frames_given = false;
-  double dt = 1.0 / 30;
-  bool dt_given = false;
-  std::string integrator = "fast-mass-spring";
-  bool integrator_given = false;
-  double shrink = 0;  // rest lengths l0(t) = l0(0) exp(-shrink t)
-  // FastMassSpringOptions
-  int iterations = 50;
-  double tolerance = 0;
-  std::string pins = "exact";
-  double penalty_weight = 1e10;
-  std::string acceleration = "none";
-  double chebyshev_rho = 0;
-  bool rho_given = false;
-  double chebyshev_gamma = 1;
-  int chebyshev_delay = 2;
-  int chebyshev_estimate = 100;
-  int anderson_window = 5;
-  int threads = 1;
-  std::string ordering = "auto";
-  std::string initial_guess = "current";
-  // BackwardEulerOptions
-  int newton_iterations = 20;
-  double newton_tolerance = 1e-10;
-  std::string line_search = "on";
-  // options given that belong to one integrator or acceleration
-  std::vector<std::string> given_fast_mass_spring, given_chebyshev, given_anderson,
-      given_backward_euler;
-  std::vector<double> force{0, 0, 0};
-  std::vector<double> gravity{0, -9.8, 0};
-  bool force_given = false, gravity_given = false;
-  std::string storage = "sparse";
-  std::string precision = "double";
-  std::string out;         // folder for frame_NNNNN.obj
-  std::string csv;         // trajectory file
-  std::string save_state;  // state file
-  int save_every = 0;
-  bool overwrite = false;
-  int every = 1;
-  bool quiet = false;
-  double guard_growth = 100;  // DivergenceGuard growth; 0: no energy check
-  // --self-collision: the thickness [m] (> 0), with the default friction; unset: the scene's own
-  std::optional<double> self_collision;
-};
-
-// What a run needs besides the options.
-template <class System>
-struct Setup {
-  System system;
-  std::vector<std::vector<int>> faces;  // drawn in the OBJ frames
-  massspring::Edges edges;              // drawn in the OBJ frames (XML: every edge)
-  std::vector<fs::path> inputs;         // every file the run reads
-  std::optional<massspring::io::FosssimScene> fosssim;
-  bool state = false;       // a state saved by --save-state
-  nlohmann::json run_data;  // its "run" object
-  std::string name;         // the scene file or "--generate SPEC"
-};
-
 inline double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
@@ -123,6 +64,7 @@ struct Plan {
   massspring::IntegratorKind kind = massspring::IntegratorKind::FastMassSpring;
   std::optional<double> saved_rho;               // a saved state's Chebyshev rho
   std::optional<std::vector<double>> rest_at_0;  // --shrink: rest lengths at frame 0
+  StabilityHint hint;                            // explicit integrators: their stable step
 };
 
 // A saved state's "run" entry, type-checked.
@@ -152,7 +94,11 @@ Plan resolve(const Config& c, const Setup<System>& s) {
   const J* saved_integrator = run_entry(c, run, "integrator", &J::is_string);
   if (const J* r = run_entry(c, run, "chebyshev_rho", &J::is_number))
     p.saved_rho = r->get<double>();
-  p.dt = c.dt_given ? c.dt : xml ? s.fosssim->dt : saved_dt ? saved_dt->get<double>() : c.dt;
+  p.dt = c.dt_given ? c.dt
+         : xml      ? s.fosssim->dt
+         : saved_dt ? saved_dt->get<double>()
+         : s.dt     ? *s.dt
+                    : c.dt;
   if (!(std::isfinite(p.dt) && p.dt > 0))
     throw Error(s.name + ": key \"run\": \"dt\" must be > 0, got " + std::to_string(p.dt));
   using massspring::IntegratorNaming;
@@ -166,14 +112,37 @@ Plan resolve(const Config& c, const Setup<System>& s) {
       massspring::find_integrator(p.integrator, IntegratorNaming::Cli);
   if (!kind) throw Error(s.name + ": key \"run\": unknown integrator \"" + p.integrator + "\"");
   p.kind = *kind;
-  long long steps = c.frames;
-  if (!c.frames_given && xml) steps = s.fosssim->steps_for(p.dt);
+  long long steps = c.steps;
+  std::string length = "--steps " + std::to_string(c.steps) + " =";  // what set it, for messages
+  switch (c.length) {
+    case Length::Default:
+      if (xml) {
+        steps = s.fosssim->steps_for(p.dt);
+        length = s.name + ": its duration / dt =";
+      } else {
+        length = "the default =";
+      }
+      break;
+    case Length::Steps:
+      break;
+    case Length::Frames:
+      steps = c.frames * c.every;
+      length = "--frames " + std::to_string(c.frames) + " x --every " + std::to_string(c.every) +
+               " =";
+      break;
+    case Length::Duration:
+      steps = massspring::io::FosssimScene::steps_of(c.duration, p.dt);
+      length = "--duration " + massspring::detail::message(c.duration) + " s / dt " +
+               massspring::detail::message(p.dt) + " s =";
+      break;
+  }
   if (steps > 100000000)
-    throw Error(s.name + ": " + std::to_string(steps) +
-                " steps (its duration / dt) is more than 10^8; give --frames or --dt");
+    throw Error(length + " " + std::to_string(steps) +
+                " steps: more than 10^8; ask for fewer, or a larger --dt");
   if (p.first_frame + steps > 2000000000)
-    throw Error("--frames " + std::to_string(steps) + ": frame numbers would pass 2000000000 (" +
-                s.name + " starts at frame " + std::to_string(p.first_frame) + ")");
+    throw Error(length + " " + std::to_string(steps) + " steps: frame numbers would pass "
+                "2000000000 (" + s.name + " starts at frame " + std::to_string(p.first_frame) +
+                ")");
   p.steps = int(steps);
 
   auto refuse = [&](const std::vector<std::string>& given, const std::string& needs, bool applies) {
@@ -351,6 +320,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
     // The energy check (off with --guard-growth 0): a step whose total energy passes
     // E(0) + growth x scale is undone and stops the run, like a non-finite one.
     if (c.guard_growth > 0) guard.emplace(system, massspring::DivergenceOptions{c.guard_growth});
+    Progress progress(c.quiet ? 0.0 : c.progress, p.steps, p.dt);
     for (int step = 1; step <= p.steps; ++step) {
       if (g_signal) {  // SIGINT or SIGTERM since the last step: keep its frame, stop
         signal = g_signal;
@@ -380,6 +350,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
       ++frame;
       write_frame(frame);
       if (c.save_every > 0 && frame % c.save_every == 0) save(frame);
+      progress.step_done(step);
     }
   } catch (const std::exception& e) {
     throw Error(std::string(e.what()) + where());
@@ -414,6 +385,10 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
     std::fprintf(stderr, "massspring-simulate: %s\n", f.c_str());
 
   const std::string range = std::to_string(p.first_frame) + "..";
+  const std::string hint = diverged_at > 0 ? p.hint.text(p.dt, p.integrator) : "";
+  auto print_hint = [&] {
+    if (!hint.empty()) std::fprintf(stderr, "massspring-simulate: %s\n", hint.c_str());
+  };
   if (diverged_at > 0 && blew_up) {
     std::fprintf(stderr,
                  "massspring-simulate: step %lld: the total energy passed the divergence limit "
@@ -421,6 +396,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
                  "state (steps %s%lld written)\n",
                  diverged_at, double(guard->limit()), c.guard_growth, double(guard->scale()),
                  range.c_str(), diverged_at - 1);
+    print_hint();
     return kExitDiverged;
   }
   if (diverged_at > 0) {
@@ -431,6 +407,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
                  unresolved ? "surface contact left a crossing its rounds could not remove"
                             : "the step produced a non-finite state",
                  unresolved ? "good" : "finite", range.c_str(), diverged_at - 1);
+    print_hint();
     return kExitDiverged;
   }
   if (interrupted_at >= 0) {
@@ -472,26 +449,38 @@ int run(const Config& c, Setup<System>& s) {
   // JSON and generated scenes get --gravity and --force as force terms (an XML scene or a saved
   // state has its own). Every integrator reads them from the system; FastMassSpring treats both
   // exactly, and the divergence guard sees their energy.
+  // A JSON scene with "gravity" carries its own Gravity term (make_system() added it): the
+  // default --gravity is then not added, and a --gravity given is refused.
   if (!s.fosssim && !s.state) {
+    const bool own_gravity =
+        system.forces().template find<massspring::Gravity<Scalar>>() != nullptr;
+    if (own_gravity && c.gravity_given)
+      throw Error("--gravity: " + s.name +
+                  " carries its own gravity (its key \"gravity\"); change it there, or leave "
+                  "out --gravity");
     massspring::Vector3<Scalar> gravity, force;
     for (int k = 0; k < 3; ++k) {
       gravity(k) = Scalar(c.gravity[std::size_t(k)]);
       force(k) = Scalar(c.force[std::size_t(k)]);
     }
-    if (!gravity.isZero()) system.add_force(massspring::Gravity<Scalar>(gravity));
+    if (!gravity.isZero() && !own_gravity)
+      system.add_force(massspring::Gravity<Scalar>(gravity));
     if (!force.isZero()) system.add_force(massspring::ConstantForce<Scalar>(force));
   }
   if (!c.save_state.empty())
     for (int k = 0; k < system.forces().size(); ++k) {
       const std::string term = system.forces()[k].name;
-      if (term != "gravity" && term != "constant force" && term != "linear drag")
+      if (term != "gravity" && term != "constant force" && term != "linear drag" &&
+          term != "gravitational attraction" && term != "vortex force")
         throw Error("--save-state " + c.save_state + ": " + s.name + " has a " + term +
-                    " term, which a state file cannot hold (it holds gravity, constant force and "
-                    "linear drag)");
+                    " term, which a state file cannot hold (it holds " +
+                    massspring::io::detail::kStateForceTerms + ")");
     }
 
+  Plan plan = p;
+  plan.hint = StabilityHint::at(p.kind, system);
   return massspring::with_integrator<System>(
-      p.kind, [&](auto& solver) { return loop(c, s, p, solver, p.integrator); });
+      p.kind, [&](auto& solver) { return loop(c, s, plan, solver, p.integrator); });
 }
 
 }  // namespace simulate

@@ -38,7 +38,7 @@ def main():
     os.makedirs(work)
     frames_dir = os.path.join(work, "frames")
     state = os.path.join(work, "state.json")
-    result = subprocess.run([simulate, "--generate", "cloth:6x5", "--frames", "45", "--every", "3",
+    result = subprocess.run([simulate, "--generate", "cloth:6x5", "--steps", "45", "--every", "3",
                              "--out", frames_dir, "--save-state", state, "--quiet"],
                             capture_output=True, text=True)
     check(result.returncode == 0, f"simulate: {result.stderr}")

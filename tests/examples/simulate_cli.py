@@ -18,6 +18,15 @@ CASE is one of
   options    the solver options reach the solver: Chebyshev and Anderson change the trajectory,
              --threads 2 gives the same one bit for bit (where OpenMP is), --ordering and
              backward Euler's options run, the header names what runs
+  length     --duration (seconds), --frames (written frames, x --every steps) and --steps set
+             the run's length as documented; a JSON scene's own "dt" and "gravity" give the run of
+             the same scene without them given --dt and --gravity, bit for bit
+  progress   --progress prints "step K of N" lines while the run goes on (none with --quiet, none
+             in a short run at the default 10 s)
+  hint       an explicit integrator that diverges is told the step stable_time_step() gives, and
+             a run at that step (symplectic Euler) does not diverge
+  readme     every ```sh block of README.md that runs massspring-simulate, run as printed (in a
+             copy of the scenes) twice: both exit 0, and everything written is under out/
   resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
              frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink; a scene with
              moving colliders of every kind, with every integrator; --self-collision, whose
@@ -27,6 +36,7 @@ Only the standard library."""
 import hashlib
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -70,7 +80,8 @@ def prepare(source, work):
     os.makedirs(work)
     for name in ("chain.json", "chain.obj"):
         shutil.copy(os.path.join(source, "examples", "scenes", name), work)
-    shutil.copy(os.path.join(source, "examples", "scenes_xml", "orbit.xml"), work)
+    for name in ("orbit.xml", "balls_penalty.xml"):
+        shutil.copy(os.path.join(source, "examples", "scenes_xml", name), work)
     os.makedirs(os.path.join(work, "adir.json"))
     os.makedirs(os.path.join(work, "stale"))
     for f in range(3):
@@ -79,12 +90,18 @@ def prepare(source, work):
     for name, text in (("existing.csv", "keep me\n"), ("t.csv.tmp", "frame,point\n0,0\n"),
                        ("file.txt", "a file\n"),
                        ("edges.json", '{"obj": "edges.obj", "b": [1], "k": 10}\n'),
+                       ("bad_dt.json", '{"obj": "chain.obj", "b": [1], "k": 10, "m": 1, '
+                                       '"dt": 0}\n'),
+                       ("bad_gravity.json", '{"obj": "chain.obj", "b": [1], "k": 10, "m": 1, '
+                                            '"gravity": [0, -9.8]}\n'),
+                       ("own_gravity.json", '{"obj": "chain.obj", "b": [1], "k": 10, "m": 1, '
+                                            '"gravity": [0, -1, 0], "dt": 0.01}\n'),
                        ("edges.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n")):
         with open(os.path.join(work, name), "w") as handle:
             handle.write(text)
 
 
-FLOAT_OPTIONS = ["--dt", "--shrink", "--tolerance", "--penalty-weight", "--chebyshev-rho",
+FLOAT_OPTIONS = ["--dt", "--duration", "--progress", "--shrink", "--tolerance", "--penalty-weight", "--chebyshev-rho",
                  "--chebyshev-gamma", "--newton-tolerance", "--guard-growth", "--self-collision"]
 
 # (arguments, expected stderr after the prefix); every one exits 1 with nothing written.
@@ -116,9 +133,10 @@ REFUSALS = [
     (["orbit.xml", "--gravity", "0,-9.8,0"],
      "--gravity: orbit.xml carries its own force terms (an XML scene); --gravity and --force "
      "apply to JSON+OBJ and generated scenes"),
-    (["orbit.xml", "--save-state", "s.json"],
-     "--save-state s.json: orbit.xml has a gravitational attraction term, which a state file "
-     "cannot hold (it holds gravity, constant force and linear drag)"),
+    (["balls_penalty.xml", "--save-state", "s.json"],
+     "--save-state s.json: balls_penalty.xml has a penalty contact term, which a state file "
+     "cannot hold (it holds gravity, constant force, linear drag, gravitational attraction and "
+     "vortex force)"),
     ([], "give either a scene file or --generate (see --help)"),
     (["chain.json", "--generate", "chain"], "give either a scene file or --generate (see --help)"),
     (["--generate", "blob"],
@@ -159,6 +177,38 @@ REFUSALS = [
      "FastMassSpring: options.ordering = NestedDissection: this storage's Cholesky takes no "
      "given elimination order (use Sparse storage)"),
     (["chain.json", "--bogus"], "The following argument was not expected: --bogus (see --help)"),
+    (["chain.json", "--iteration", "5"],
+     "The following arguments were not expected: 5 --iteration (did you mean --iterations?) "
+     "(see --help)"),
+    (["chain.json", "--integrater=rk4"],
+     "The following argument was not expected: --integrater=rk4 (did you mean --integrator?) "
+     "(see --help)"),
+    (["chain.json", "--dtt", "0.1"],
+     "The following arguments were not expected: 0.1 --dtt (did you mean --dt?) (see --help)"),
+    (["chain.json", "--self"],
+     "The following argument was not expected: --self (did you mean --self-collision?) "
+     "(see --help)"),
+    (["chain.json", "--steps", "3", "--frames", "4"],
+     "--steps and --frames: give one of --steps, --frames and --duration"),
+    (["chain.json", "--frames", "3", "--duration", "4"],
+     "--frames and --duration: give one of --steps, --frames and --duration"),
+    (["chain.json", "--steps", "-1"], "--steps: -1 is out of range (0 to 100000000)"),
+    (["chain.json", "--frames", "1e3"], '--frames: "1e3" is not an integer'),
+    (["chain.json", "--duration", "-1"], "--duration: must be >= 0, got -1"),
+    (["chain.json", "--progress", "-1"], "--progress: must be >= 0, got -1"),
+    (["chain.json", "--frames", "100000000", "--every", "2"],
+     "--frames 100000000 x --every 2 = 200000000 steps: more than 10^8; ask for fewer, or a "
+     "larger --dt"),
+    (["chain.json", "--duration", "1e7", "--dt", "0.01"],
+     "--duration 10000000 s / dt 0.01 s = 1000000000 steps: more than 10^8; ask for fewer, or a "
+     "larger --dt"),
+    (["bad_dt.json"], 'bad_dt.json: key "dt": expected a finite number > 0, got 0'),
+    (["bad_gravity.json"],
+     'bad_gravity.json: key "gravity": expected [gx, gy, gz] (three numbers, m/s^2), got '
+     '[0,-9.8]'),
+    (["own_gravity.json", "--gravity", "0,-9.8,0"],
+     '--gravity: own_gravity.json carries its own gravity (its key "gravity"); change it there, '
+     'or leave out --gravity'),
     (["chain.json", "--self-collision", "0.005"],
      "--self-collision: chain.json has no surface to collide (no polygons: chains, nets and XML "
      "scenes have none)"),
@@ -180,6 +230,7 @@ CONTEXT = {"--chebyshev-rho": ["--acceleration", "chebyshev"],
            "--chebyshev-gamma": ["--acceleration", "chebyshev"],
            "--newton-tolerance": ["--integrator", "backward-euler"],
            "--penalty-weight": ["--pins", "penalty"]}
+# (--duration and --progress need no context.)
 
 
 def refusals(simulate, source, work, table):
@@ -360,6 +411,160 @@ def options(simulate, source, work):
     print("OK: accelerations, rho, orderings, threads and Newton options reach the solver")
 
 
+def csv_frames(path):
+    """The frame numbers in a trajectory CSV, in order, each once."""
+    frames = []
+    for row in rows(path)[1:]:
+        f = int(row.split(",")[0])
+        if not frames or frames[-1] != f:
+            frames.append(f)
+    return frames
+
+
+def length(simulate, source, work):
+    prepare(source, work)
+
+    def ok(args):
+        result = run(simulate, args, work)
+        check(result.returncode == 0, f"{args}: exit {result.returncode} {result.stderr}")
+        return result
+
+    # --duration: 1 s at dt 0.01 is 100 steps; 0.105 s is 11 (rounded up); 0.3 s at 0.1 is 3
+    # (0.3 / 0.1 = 2.9999999999999996: within rounding of a whole number)
+    for duration, dt, steps in (("1", "0.01", 100), ("0.105", "0.01", 11), ("0.3", "0.1", 3)):
+        result = ok(["chain.json", "--duration", duration, "--dt", dt, "--csv", "d.csv",
+                     "--overwrite"])
+        check(csv_frames(os.path.join(work, "d.csv")) == list(range(steps + 1)),
+              f"--duration {duration} --dt {dt}: frames {csv_frames(os.path.join(work, 'd.csv'))}")
+        check(f"{steps} steps" in result.stdout.splitlines()[0], f"header {result.stdout!r}")
+    # --frames counts written frames: 5 after the first, every 3rd step: 15 steps
+    ok(["chain.json", "--frames", "5", "--every", "3", "--out", "f"])
+    names = sorted(os.listdir(os.path.join(work, "f")))
+    check(names == [f"frame_{k:05d}.obj" for k in range(0, 16, 3)], f"--frames 5 --every 3: {names}")
+    # --steps: the steps themselves, frames every 4th and the last
+    ok(["chain.json", "--steps", "10", "--every", "4", "--csv", "s.csv"])
+    check(csv_frames(os.path.join(work, "s.csv")) == [0, 4, 8, 10], "--steps 10 --every 4")
+    # the default: 300 steps
+    ok(["chain.json", "--every", "100", "--csv", "default.csv"])
+    check(csv_frames(os.path.join(work, "default.csv")) == [0, 100, 200, 300], "default length")
+    # a JSON scene's own "gravity" and "dt" (own_gravity.json: chain.json's cloth with
+    # gravity (0, -1, 0) and dt 0.01) give the run of chain.json with them as options, bit for bit
+    own = ok(["own_gravity.json", "--steps", "30", "--csv", "own.csv"])
+    check("dt 0.01 s, 30 steps (0.3 s)" in own.stdout, f"header {own.stdout!r}")
+    check("1 force terms" in own.stdout, f"one gravity term, not two: {own.stdout!r}")
+    with open(os.path.join(work, "plain.json"), "w") as handle:
+        handle.write('{"obj": "chain.obj", "b": [1], "k": 10, "m": 1}\n')
+    ok(["plain.json", "--steps", "30", "--dt", "0.01", "--gravity", "0,-1,0", "--csv",
+        "given.csv"])
+    check(rows(os.path.join(work, "own.csv")) == rows(os.path.join(work, "given.csv")),
+          "a scene's own gravity and dt differ from the same given as options")
+    # --dt replaces the scene's own
+    other = ok(["own_gravity.json", "--steps", "3", "--dt", "0.02"])
+    check("dt 0.02 s" in other.stdout, f"--dt with a scene's dt: {other.stdout!r}")
+    print("OK: --duration, --frames, --steps and the default set the length; a scene's own "
+          "gravity and dt are used")
+
+
+PROGRESS = re.compile(r"^step (\d+) of (\d+) \((\d+)%\): ([0-9.e+-]+) s of ([0-9.e+-]+) s "
+                      r"simulated; ([0-9.]+) s elapsed, about ([0-9.]+) s left$")
+
+
+def progress(simulate, source, work):
+    prepare(source, work)
+    args = ["--generate", "cloth:20x15", "--steps", "60", "--iterations", "20"]
+    result = run(simulate, args + ["--progress", "0.000001"], work)
+    check(result.returncode == 0, f"exit {result.returncode} {result.stderr}")
+    lines = [line for line in result.stdout.splitlines() if line.startswith("step ")]
+    check(len(lines) >= 1, f"no progress line in {result.stdout!r}")
+    done = []
+    for line in lines:
+        match = PROGRESS.match(line)
+        check(match is not None, f"progress line {line!r}")
+        step, total = int(match.group(1)), int(match.group(2))
+        check(total == 60 and 1 <= step <= 60, line)
+        check(abs(float(match.group(4)) - step / 30) < 1e-3 and float(match.group(5)) == 2, line)
+        done.append(step)
+    check(done == sorted(set(done)), f"steps not increasing: {done}")
+    for extra in (["--quiet", "--progress", "0.000001"], [], ["--progress", "0"]):
+        result = run(simulate, args + extra, work)
+        check(result.returncode == 0 and "step 1 of" not in result.stdout and
+              not any(line.startswith("step ") for line in result.stdout.splitlines()),
+              f"{extra}: progress lines in {result.stdout!r}")
+    print(f"OK: {len(lines)} progress lines with --progress; none with --quiet, 0 or a short run")
+
+
+def hint(simulate, source, work):
+    prepare(source, work)
+    prefix = P + "hint: "
+    # symplectic Euler at dt 1 s on a chain: diverges; the hint's step runs it stably
+    result = run(simulate, ["--generate", "chain:10", "--integrator", "symplectic-euler", "--dt",
+                            "1", "--steps", "1000"], work)
+    check(result.returncode == 2, f"exit {result.returncode}")
+    lines = [line for line in result.stderr.splitlines() if line.startswith(prefix)]
+    check(len(lines) == 1, f"stderr {result.stderr!r}")
+    match = re.match(re.escape(prefix) + r"--dt 1 is above the step symplectic-euler is stable at "
+                     r"on this scene: stable_time_step\(\) gives ([0-9.e+-]+) s at the first "
+                     r"state; try --dt \1, or an implicit integrator \(--integrator "
+                     r"backward-euler or fast-mass-spring\) is stable at any --dt$", lines[0])
+    check(match is not None, f"hint {lines[0]!r}")
+    step = match.group(1)
+    again = run(simulate, ["--generate", "chain:10", "--integrator", "symplectic-euler", "--dt",
+                           step, "--steps", "2000"], work)
+    check(again.returncode == 0, f"--dt {step}: exit {again.returncode} {again.stderr}")
+    # forward Euler without drag: no stable step; the hint names symplectic Euler's
+    result = run(simulate, ["--generate", "chain:10", "--integrator", "forward-euler", "--dt",
+                            "0.1", "--steps", "100000"], work)
+    check(result.returncode == 2, f"forward Euler: exit {result.returncode}")
+    match = re.search(re.escape(prefix) + r"forward-euler is unstable at every --dt on this scene "
+                      r"\(springs without linear drag\); symplectic-euler is stable at --dt "
+                      r"([0-9.e+-]+) \(stable_time_step\(\) at the first state\), or an implicit "
+                      r"integrator", result.stderr)
+    check(match is not None, f"forward Euler's hint: {result.stderr!r}")
+    check(match.group(1) == step, f"symplectic step {match.group(1)} != {step}")
+    # an implicit integrator gets no hint
+    result = run(simulate, ["--generate", "chain:10", "--integrator", "backward-euler", "--dt",
+                            "1", "--steps", "5"], work)
+    check(prefix not in result.stderr, f"backward Euler: {result.stderr!r}")
+    print(f"OK: the hint's step {step} s runs symplectic Euler 2000 steps without diverging")
+
+
+def readme(simulate, source, work):
+    """The README's massspring-simulate commands, as printed, twice, in a copy of the scenes."""
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(os.path.join(work, "build", "examples"))
+    os.symlink(simulate, os.path.join(work, "build", "examples", "massspring-simulate"))
+    for folder in ("scenes", "scenes_xml"):
+        shutil.copytree(os.path.join(source, "examples", folder),
+                        os.path.join(work, "examples", folder))
+    blocks, block, inside = [], [], False
+    with open(os.path.join(source, "README.md")) as handle:
+        for line in handle.read().splitlines():
+            if inside and line == "```":
+                inside = False
+                if any("massspring-simulate" in b for b in block):
+                    blocks.append("\n".join(block))
+            elif inside:
+                block.append(line)
+            elif line == "```sh":
+                inside, block = True, []
+    check(len(blocks) >= 3, f"{len(blocks)} README blocks run massspring-simulate")
+    before = snapshot(work)
+    for attempt in (1, 2):
+        for text in blocks:
+            result = subprocess.run(["bash", "-euo", "pipefail", "-c", text], cwd=work,
+                                    capture_output=True, text=True, timeout=900)
+            check(result.returncode == 0,
+                  f"run {attempt} of the README's\n{text}\nexit {result.returncode}: "
+                  f"{result.stderr}")
+    after = snapshot(work)
+    written = sorted(set(after) - set(before))
+    outside = [f for f in written if not f.startswith("out/")]
+    check(not outside, f"the README's commands wrote outside out/: {outside}")
+    changed = [f for f in before if before[f] != after.get(f)]
+    check(not changed, f"the README's commands changed {changed}")
+    print(f"OK: {len(blocks)} README blocks ran twice; {len(written)} files, all under out/")
+
+
 def write_contact_scene(work):
     """contact.json: a 5 x 5 cloth lying on a plane that rises, with a sphere, a capsule, a box
     and a mesh (bump.obj), every one moving, so that contact happens from the first step."""
@@ -413,6 +618,9 @@ def resume(simulate, source, work):
         (["contact.json"], ["--integrator", "linearized-backward-euler"]),
         # self-collision: the state holds the surface and the thickness
         (["--generate", "cloth:8x6"], ["--self-collision", "0.01"]),
+        # an XML scene's gravitational attraction, and a JSON scene's own gravity and dt
+        (["orbit.xml"], []),
+        (["own_gravity.json"], []),
     ]
     for k, (scene, options) in enumerate(cases):
         whole, first, second, state = (f"r{k}_20.csv", f"r{k}_a.csv", f"r{k}_b.csv",
@@ -462,6 +670,10 @@ def main():
              "rename": lambda: rename(simulate, source, work),
              "killed": lambda: killed(simulate, source, work),
              "options": lambda: options(simulate, source, work),
+             "length": lambda: length(simulate, source, work),
+             "progress": lambda: progress(simulate, source, work),
+             "hint": lambda: hint(simulate, source, work),
+             "readme": lambda: readme(simulate, source, work),
              "resume": lambda: resume(simulate, source, work)}
     if case not in cases:
         fail(f"unknown case {case}")

@@ -81,7 +81,7 @@ def interrupted(simulate, work, sig, every, status):
     columns, rows = 30, 20
     points = columns * rows
     process = subprocess.Popen(
-        [simulate, "--generate", f"cloth:{columns}x{rows}", "--frames", "100000000", "--every",
+        [simulate, "--generate", f"cloth:{columns}x{rows}", "--steps", "100000000", "--every",
          str(every), "--out", out, "--csv", csv],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     # wait until a few frames exist (the run is well under way), then send the signal once

@@ -222,3 +222,63 @@ TEST_CASE("BackwardEuler with Dense storage allocates nothing in step()") {
     CHECK(count.count() == 0);
   }
 }
+
+TEST_CASE("StepReport::convergence: NotTested without a tolerance, Converged or NotConverged with") {
+  using massspring::Convergence;
+  massspring::ClothOptions o;
+  o.columns = 8;
+  o.rows = 6;
+  const SystemS start = massspring::make_system<SystemS>(massspring::make_cloth(o));
+  auto first_step = [&](auto& solver) {
+    SystemS s = start;
+    s.add_force(massspring::Gravity<double>({0, -9.8, 0}));
+    solver.precompute(s, 1.0 / 30);
+    return solver.step(s);
+  };
+  SUBCASE("FastMassSpring, tolerance 0 (the default): its iterations ran as asked, not a failure") {
+    massspring::FastMassSpring<SystemS> solver;
+    const massspring::StepReport r = first_step(solver);
+    CHECK(r.ok());
+    CHECK(r.iterations == solver.options.iterations);
+    CHECK_FALSE(r.converged);
+    CHECK(r.convergence == Convergence::NotTested);
+  }
+  SUBCASE("FastMassSpring, a tolerance met before the cap") {
+    massspring::FastMassSpring<SystemS> solver;
+    solver.options.tolerance = 1e-3;
+    const massspring::StepReport r = first_step(solver);
+    CHECK(r.converged);
+    CHECK(r.iterations < solver.options.iterations);
+    CHECK(r.convergence == Convergence::Converged);
+  }
+  SUBCASE("FastMassSpring, the cap before the tolerance (every accelerator)") {
+    for (auto a : {massspring::Acceleration::None, massspring::Acceleration::Chebyshev,
+                   massspring::Acceleration::Anderson}) {
+      massspring::FastMassSpring<SystemS> solver;
+      solver.options.acceleration = a;
+      solver.options.tolerance = 1e-30;
+      solver.options.iterations = 3;
+      const massspring::StepReport r = first_step(solver);
+      CHECK(r.ok());
+      CHECK_FALSE(r.converged);
+      CHECK(r.convergence == Convergence::NotConverged);
+    }
+  }
+  SUBCASE("BackwardEuler: Newton tests its tolerance, the linearised step does not") {
+    BackwardEuler<SystemS> newton;
+    newton.options.mode = BackwardEulerMode::Newton;
+    const massspring::StepReport r = first_step(newton);
+    CHECK(r.converged);
+    CHECK(r.convergence == Convergence::Converged);
+    BackwardEuler<SystemS> capped;
+    capped.options.mode = BackwardEulerMode::Newton;
+    capped.options.tolerance = 0;
+    capped.options.max_iterations = 1;
+    CHECK(first_step(capped).convergence == Convergence::NotConverged);
+    BackwardEuler<SystemS> linearized;
+    linearized.options.mode = BackwardEulerMode::Linearized;
+    const massspring::StepReport l = first_step(linearized);
+    CHECK(l.ok());
+    CHECK(l.convergence == Convergence::NotTested);
+  }
+}

@@ -157,7 +157,8 @@ TEST_CASE("J5 unknown, repeated or unsupported key") {
   const JsonScene unknown(R"({"obj": "tri.obj", "b": [1], "k": 10, "wind": 1})");
   CHECK(unknown.error() ==
         unknown.name() +
-            ": unknown key \"wind\" (expected obj, b, k, m, png, colliders, self_collision)");
+            ": unknown key \"wind\" (expected obj, b, k, m, png, colliders, self_collision, "
+            "gravity, dt)");
   const JsonScene twice(R"({"obj": "tri.obj", "b": [1], "k": 10, "k": 20})");
   CHECK(twice.error() == twice.name() + ": key \"k\" appears twice");
   const JsonScene bc(R"({"obj": "tri.obj", "b": [1], "k": 10, "bc": [[0, 0, 0]]})");

@@ -45,6 +45,8 @@ void check_same(const SceneDescription<Scalar>& a, const SceneDescription<Scalar
     CHECK(a.self_collision->thickness == b.self_collision->thickness);
     CHECK(a.self_collision->friction == b.self_collision->friction);
   }
+  CHECK(a.gravity == b.gravity);
+  CHECK(a.dt == b.dt);
 }
 
 template <class Scalar>
@@ -59,6 +61,8 @@ SceneDescription<Scalar> cast(const SceneDescription<double>& s) {
   if (s.self_collision)
     r.self_collision = massspring::contact::SelfCollision<Scalar>{
         Scalar(s.self_collision->thickness), Scalar(s.self_collision->friction)};
+  if (s.gravity) r.gravity = s.gravity->cast<Scalar>();
+  if (s.dt) r.dt = Scalar(*s.dt);
   return r;
 }
 
@@ -152,7 +156,20 @@ TEST_CASE("read_json_scene refuses bad scenes, naming the file and the key") {
       {R"({"obj": "tri.obj", "b": [1], "k": 1, "bc": [[0,0,0]]})",
        "key \"bc\" (pinned positions) is not supported"},
       {R"({"obj": "tri.obj", "b": [1], "k": 1, "wind": true})",
-       "unknown key \"wind\" (expected obj, b, k, m, png, colliders, self_collision)"},
+       "unknown key \"wind\" (expected obj, b, k, m, png, colliders, self_collision, gravity, "
+       "dt)"},
+      {R"({"obj": "tri.obj", "b": [1], "k": 1, "dt": 0})",
+       "key \"dt\": expected a finite number > 0, got 0"},
+      {R"({"obj": "tri.obj", "b": [1], "k": 1, "dt": "1/30"})",
+       "key \"dt\": expected a number > 0, got string \"1/30\""},
+      {R"({"obj": "tri.obj", "b": [1], "k": 1, "dt": 1e999})", "not valid JSON"},
+      {R"({"obj": "tri.obj", "b": [1], "k": 1, "gravity": [0, -9.8]})",
+       "key \"gravity\": expected [gx, gy, gz] (three numbers, m/s^2), got [0,-9.8]"},
+      {R"({"obj": "tri.obj", "b": [1], "k": 1, "gravity": -9.8})",
+       "key \"gravity\": expected [gx, gy, gz] (three numbers, m/s^2), got -9.8"},
+      {R"({"obj": "tri.obj", "b": [1], "k": 1, "gravity": [0, null, 0]})",
+       "key \"gravity\": expected [gx, gy, gz] (three finite numbers, m/s^2), got [0,null,0]"},
+      {R"({"obj": "tri.obj", "b": [1], "k": 1, "gravity": [0, 1e308, 1e309]})", "not valid JSON"},
       {R"({"b": [1], "k": 1})", "missing key \"obj\""},
       {R"({"obj": "tri.obj", "k": 1})", "missing key \"b\""},
       {R"({"obj": "tri.obj", "b": [1]})", "missing key \"k\""},
@@ -232,6 +249,8 @@ TEST_CASE_TEMPLATE("write_json_scene then read_json_scene gives the same descrip
   triangles.stiffness = 1.0 / 3.0;
   SceneDescription<double> folded = massspring::make_cloth(triangles);  // self-collision on
   folded.self_collision = massspring::contact::SelfCollision<double>{0.01 / 3, 0.7 / 3};
+  folded.gravity = Eigen::Vector3d(0.1 / 3, -9.8, -0.0);  // its own gravity and step
+  folded.dt = 1.0 / 300;
   massspring::ChainOptions chain;  // edges only
   chain.points = 7;
   chain.direction = Eigen::Vector3d(1, 2, 3);

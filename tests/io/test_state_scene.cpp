@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <massspring/forces/gravitational_attraction.hpp>
+#include <massspring/forces/vortex.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/io/load_scene.hpp>
 #include <massspring/io/state_scene.hpp>
@@ -54,6 +55,30 @@ void check_equal(const System& a, const System& b) {
       CHECK(f->force == b.forces().template find<massspring::ConstantForce<Scalar>>()->force);
     if (const auto* d = a.forces().template find<massspring::LinearDrag<Scalar>>())
       CHECK(d->beta == b.forces().template find<massspring::LinearDrag<Scalar>>()->beta);
+    using Attraction = massspring::GravitationalAttraction<Scalar>;
+    if (const auto* g = a.forces().template find<Attraction>()) {
+      const auto* h = b.forces().template find<Attraction>();
+      REQUIRE(h != nullptr);
+      CHECK(g->softening() == h->softening());
+      REQUIRE(g->pairs().size() == h->pairs().size());
+      for (std::size_t p = 0; p < g->pairs().size(); ++p) {
+        CHECK(g->pairs()[p].i == h->pairs()[p].i);
+        CHECK(g->pairs()[p].j == h->pairs()[p].j);
+        CHECK(g->pairs()[p].G == h->pairs()[p].G);
+      }
+    }
+    using Vortex = massspring::VortexForce<Scalar>;
+    if (const auto* v = a.forces().template find<Vortex>()) {
+      const auto* w = b.forces().template find<Vortex>();
+      REQUIRE(w != nullptr);
+      REQUIRE(v->pairs().size() == w->pairs().size());
+      for (std::size_t p = 0; p < v->pairs().size(); ++p) {
+        CHECK(v->pairs()[p].i == w->pairs()[p].i);
+        CHECK(v->pairs()[p].j == w->pairs()[p].j);
+        CHECK(v->pairs()[p].kbs == w->pairs()[p].kbs);
+        CHECK(v->pairs()[p].kvc == w->pairs()[p].kvc);
+      }
+    }
   }
 }
 
@@ -97,10 +122,22 @@ System scrambled_cloth() {
   return s;
 }
 
+// scrambled_cloth() with a gravitational attraction and a vortex term too (the terms an XML
+// scene adds).
+template <class System>
+System scrambled_cloth_all_terms() {
+  using Scalar = typename System::Scalar;
+  System s = scrambled_cloth<System>();
+  s.add_force(massspring::GravitationalAttraction<Scalar>(
+      {{0, 5, Scalar(1) / 3}, {7, 2, Scalar(6.674e-3) / 7}}, Scalar(0.01) / 3));
+  s.add_force(massspring::VortexForce<Scalar>({{1, 4, Scalar(0.2) / 3, Scalar(-1) / 7}}));
+  return s;
+}
+
 template <class System>
 void round_trip() {
   TempDir dir;
-  const System a = scrambled_cloth<System>();
+  const System a = scrambled_cloth_all_terms<System>();
   massspring::io::StateSceneExtras extras;
   extras.faces = {{0, 1, 8}, {1, 2, 9, 8}};
   extras.edges = massspring::Edges(1, 2);
@@ -150,16 +187,24 @@ TEST_CASE("state scene: write_scene then read_state_scene gives every field back
   round_trip<massspring::MassSpringSystem<float, massspring::Dense>>();
 }
 
+// A force term of the user's own (forces/force_term.hpp), which a state scene cannot hold.
+struct UserTerm {
+  static constexpr bool velocity_dependent = false;
+  [[nodiscard]] const char* name() const { return "a user's term"; }
+  void add_force(const massspring::ForceContext<double>&, massspring::Points<double>&) const {}
+};
+
 TEST_CASE("state scene: a term it cannot hold is refused and nothing is written") {
   TempDir dir;
   using System = massspring::MassSpringSystem<double, massspring::Sparse>;
   System s = scrambled_cloth<System>();
-  s.add_force(massspring::GravitationalAttraction<double>::all_pairs(3, 1.0));
+  s.add_force(UserTerm{});
   const auto path = dir / "s.json";
   CHECK_THROWS_WITH_AS(
       massspring::io::write_scene(s, path),
-      (path.string() + ": force term 3 (gravitational attraction) cannot be written: a state "
-                       "scene holds gravity, constant force and linear drag terms")
+      (path.string() + ": force term 3 (a user's term) cannot be written: a state scene holds "
+                       "gravity, constant force, linear drag, gravitational attraction and vortex "
+                       "force terms")
           .c_str(),
       Error);
   CHECK_FALSE(std::filesystem::exists(path));

@@ -27,11 +27,39 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/library ${common}
 run(${CMAKE_COMMAND} --install ${WORK_DIR}/library --prefix ${prefix})
 foreach(file include/massspring/massspring.hpp include/massspring/io.hpp
              share/cmake/massspring/massspringConfig.cmake
-             share/cmake/massspring/massspringConfigVersion.cmake)
+             share/cmake/massspring/massspringConfigVersion.cmake
+             bin/massspring-render share/doc/massspring/README.md)
   if(NOT EXISTS ${prefix}/${file})
     message(FATAL_ERROR "the install is missing ${file}")
   endif()
 endforeach()
+# massspring-render (scripts/render.py) is a program; every relative link of the installed README
+# (docs/*.md, pictures, LICENSE) leads to an installed file.
+file(STRINGS ${prefix}/bin/massspring-render shebang LIMIT_COUNT 1)
+if(NOT shebang MATCHES "^#!.*python3")
+  message(FATAL_ERROR "bin/massspring-render does not start with a python3 #! line: ${shebang}")
+endif()
+file(READ ${prefix}/share/doc/massspring/README.md readme)
+# (brackets and semicolons would confuse CMake's lists: a link "](target)" becomes "@(target)")
+string(REPLACE ";" "," readme "${readme}")
+string(REPLACE "[" "<" readme "${readme}")
+string(REPLACE "]" "@" readme "${readme}")
+string(REGEX MATCHALL "@\\([^)#]+[)#]" links "${readme}")
+set(checked 0)
+foreach(link IN LISTS links)
+  string(REGEX REPLACE "^@\\(([^)#]+)[)#]$" "\\1" target "${link}")
+  if(target MATCHES "^[a-z]+:")
+    continue()
+  endif()
+  if(NOT EXISTS ${prefix}/share/doc/massspring/${target})
+    message(FATAL_ERROR "the installed README links ${target}, which is not installed")
+  endif()
+  math(EXPR checked "${checked} + 1")
+endforeach()
+if(checked LESS 10)
+  message(FATAL_ERROR "found ${checked} relative links in the installed README, expected its docs")
+endif()
+message(STATUS "the installed README's ${checked} relative links lead to installed files")
 
 # 2. find_package from the prefix (with the cholmod component where it was installed: the library's
 # configure found CHOLMOD).

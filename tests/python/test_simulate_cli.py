@@ -83,9 +83,10 @@ def python_trajectory(path, frames, integrator=None, dt=None, iterations=None,
         loaded = ms.load_scene_file(path)
     s = loaded.system
     if loaded.fosssim is None:
-        s.add_force(ms.Gravity([0, -9.8, 0]))  # the CLI's default --gravity 0,-9.8,0
+        if "gravity" not in s.forces:  # a JSON scene's own "gravity", else the CLI's default
+            s.add_force(ms.Gravity([0, -9.8, 0]))
         integrator = integrator or "fast-mass-spring"
-        dt = dt or 1.0 / 30
+        dt = dt or getattr(loaded, "dt", None) or 1.0 / 30  # --dt, the scene's "dt", 1/30
     else:  # an XML scene runs with its own integrator and dt unless told otherwise
         integrator = integrator or loaded.fosssim.integrator
         dt = dt or loaded.fosssim.dt
@@ -114,6 +115,8 @@ CASES = [
      {"iterations": 10, "acceleration": ms.Acceleration.Chebyshev}),
     # plane and sphere colliders: at dt 1/200 s the cloth lands on the ball (about frame 50)
     ("drape.json", 100, ["--iterations", "10", "--dt", "0.005"], {"iterations": 10, "dt": 0.005}),
+    # its own "dt" (0.005) and "gravity"
+    ("drape.json", 40, ["--iterations", "10"], {"iterations": 10}),
     ("table.json", 20, ["--iterations", "10", "--acceleration", "anderson"],
      {"iterations": 10, "acceleration": ms.Acceleration.Anderson}),
     ("chain.json", 20, ["--integrator", "backward-euler", "--dt", "0.01"],

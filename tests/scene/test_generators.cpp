@@ -400,3 +400,57 @@ TEST_CASE("the committed examples/scenes are exactly what massspring-make-scenes
     present.insert(entry.path().filename().string());
   CHECK(present == expected_files);
 }
+
+TEST_CASE("generators: origin puts point 0 there, center the middle of the bounding box") {
+  using V = massspring::Vector3<double>;
+  const V at(0.25, 1.5, -0.75);
+  auto middle = [](const SceneDescription<double>& s) {
+    return V(((s.vertices.colwise().minCoeff() + s.vertices.colwise().maxCoeff()) / 2)
+                 .transpose());
+  };
+  massspring::ClothOptions cloth;
+  cloth.columns = 5;
+  cloth.rows = 4;
+  cloth.plane = massspring::ClothPlane::Horizontal;
+  const SceneDescription<double> plain = massspring::make_cloth(cloth);
+  cloth.center = at;
+  const SceneDescription<double> centred = massspring::make_cloth(cloth);
+  // a rigid translation: the same shape, its middle at `at` (0.6 m and 0.5 m from its corner)
+  CHECK((centred.vertices.rowwise() - centred.vertices.row(0)).isApprox(
+      plain.vertices.rowwise() - plain.vertices.row(0), 1e-15));
+  CHECK((middle(centred) - at).norm() < 1e-15);
+  CHECK((centred.vertices.row(0).transpose() - V(at.x() - 0.6, at.y(), at.z() - 0.5)).norm() <
+        1e-15);
+  cloth.center.reset();
+  cloth.origin = at;
+  CHECK(massspring::make_cloth(cloth).vertices.row(0).transpose() == at);
+
+  massspring::ChainOptions chain;
+  chain.direction = V(0, 0, -1);
+  chain.length = 2;
+  chain.center = at;
+  const SceneDescription<double> c = massspring::make_chain(chain);
+  CHECK((middle(c) - at).norm() < 1e-15);
+  CHECK((c.vertices.row(0).transpose() - V(at.x(), at.y(), at.z() + 1)).norm() < 1e-15);
+  chain.center.reset();
+  chain.origin = at;
+  CHECK(massspring::make_chain(chain).vertices.row(0).transpose() == at);
+
+  massspring::NetOptions net;
+  net.center = at;
+  CHECK((middle(massspring::make_net(net)) - at).norm() < 1e-15);
+  net.center.reset();
+  net.origin = at;
+  CHECK(massspring::make_net(net).vertices.row(0).transpose() == at);
+
+  // refused: both, or a non-finite point
+  net.center = at;
+  CHECK_THROWS_WITH_AS(massspring::make_net(net),
+                       "make_net: give origin (where point 0 goes) or center (where the middle "
+                       "goes), not both",
+                       Error);
+  cloth.origin.reset();
+  cloth.center = V(0, kNaN, 0);
+  CHECK_THROWS_WITH_AS(massspring::make_cloth(cloth), "make_cloth: center must be finite, got (0, nan, 0)",
+                       Error);
+}

@@ -4,7 +4,9 @@
 /// item.
 
 #include <Eigen/Core>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -14,13 +16,28 @@
 
 namespace massspring::detail {
 
-/// @brief Appends a number as `std::ostream` writes it at precision 17 (17 significant digits).
-/// One function, not a template: every message shares it.
+/// @brief Appends a number as the shortest text that reads back to the same double ("-0.3", not
+/// "-0.29999999999999999"; the JSON loader quotes the same text), in fixed notation for decimal
+/// exponents -4 to 16 ("10000000000") and scientific outside ("1e-05", "1.5e+20"), as
+/// `std::ostream` at precision 17 chooses; "nan", "inf". One function, not a template: every
+/// message shares it.
 inline void append_message_number(std::string& out, double x) {
-  std::ostringstream text;
-  text.precision(17);
-  text << x;
-  out += text.str();
+  if (!std::isfinite(x)) {
+    out += std::isnan(x) ? (std::signbit(x) ? "-nan" : "nan") : (x < 0 ? "-inf" : "inf");
+    return;
+  }
+  char buffer[64];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::scientific);
+  (void)ec;  // 64 characters hold any double
+  *end = '\0';
+  const std::string_view scientific(buffer, std::size_t(end - buffer));
+  const int exponent = std::atoi(buffer + scientific.find('e') + 1);
+  if (x != 0 && (exponent < -4 || exponent >= 17)) {
+    out += scientific;
+    return;
+  }
+  end = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::fixed).ptr;
+  out.append(buffer, end);
 }
 
 /// @brief Appends one part of a message: text as it is, a character, a number (integers exactly,
@@ -46,8 +63,8 @@ void append_part(std::string& out, const T& part) {
   }
 }
 
-/// @brief Builds a message from streamable parts: `message("point ", 3, ": mass ", m)`, numbers at
-/// 17 significant digits.
+/// @brief Builds a message from streamable parts: `message("point ", 3, ": mass ", m)`, numbers as
+/// append_message_number() writes them.
 template <class... Parts>
 std::string message(const Parts&... parts) {
   std::string out;

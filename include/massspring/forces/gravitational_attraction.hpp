@@ -32,7 +32,7 @@ class GravitationalAttraction {
   ///                      against the system when the term is added to it.
   /// @param[in] softening eps [m], finite and >= 0.
   explicit GravitationalAttraction(std::vector<Pair> pairs, Scalar softening = 0)
-      : pairs_(std::move(pairs)), eps2_(softening * softening) {
+      : pairs_(std::move(pairs)), softening_(softening), eps2_(softening * softening) {
     detail::require_number("gravitational attraction", "softening length", double(softening),
                            false);
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -57,6 +57,8 @@ class GravitationalAttraction {
   }
 
   [[nodiscard]] const std::vector<Pair>& pairs() const { return pairs_; }
+  /// @brief The softening length eps [m], as given.
+  [[nodiscard]] Scalar softening() const { return softening_; }
   /// @brief Largest point index used (-1 when there are no pairs).
   [[nodiscard]] int max_index() const {
     int m = -1;
@@ -106,6 +108,7 @@ class GravitationalAttraction {
 
  private:
   std::vector<Pair> pairs_;
+  Scalar softening_ = 0;
   Scalar eps2_ = 0;
 };
 

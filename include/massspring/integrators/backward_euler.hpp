@@ -104,6 +104,7 @@ class BackwardEuler {
     StepReport report;
     if (system.num_points() == 0) {  // nothing moves; max over an empty residual is undefined
       report.converged = true;
+      report.convergence = Convergence::Converged;
       report.residual = 0;
       return report;
     }
@@ -145,6 +146,10 @@ class BackwardEuler {
         break;
       }
     }
+    // Newton tests its tolerance every iteration; the linearised step is one solve.
+    report.convergence = !newton           ? Convergence::NotTested
+                         : report.converged ? Convergence::Converged
+                                            : Convergence::NotConverged;
     if (has_potential) report.energy = double(objective(system, x_, moved_));
     v_ = v0 + moved_ / h;
     detail::commit_step(system, x_, v_, h, report);

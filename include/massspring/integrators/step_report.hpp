@@ -6,6 +6,19 @@
 
 namespace massspring {
 
+/// @brief Whether a step tested a convergence tolerance, and met it (StepReport::convergence).
+enum class Convergence {
+  /// No tolerance was tested: FastMassSpring with `tolerance` 0 (the default: it ran its
+  /// `iterations`, as asked), linearised backward Euler (one solve) and the explicit integrators.
+  /// Not a failure.
+  NotTested,
+  /// The tolerance was met (then `converged` is true).
+  Converged,
+  /// A tolerance was asked for and the iteration cap came first: the step is less accurate than
+  /// asked (still `ok()` when finite).
+  NotConverged,
+};
+
 /// @brief The outcome of one step. A step that fails (`ok() == false`: a failed factorisation, a
 /// non-finite value, or an energy blow-up caught by a DivergenceGuard) leaves the system's
 /// positions and velocities exactly as they were before the step.
@@ -24,8 +37,10 @@ struct StepReport {
   /// iteration, max |F(x) - M (x - x^t - h v^t) / h^2|. NaN when the integrator has none.
   double residual = std::numeric_limits<double>::quiet_NaN();
   /// @brief True when the step stopped because its tolerance was met (never when the tolerance is
-  /// 0).
+  /// 0: then `convergence` is NotTested, which is not a failure).
   bool converged = false;
+  /// @brief NotTested (no tolerance asked), Converged or NotConverged (the cap came first).
+  Convergence convergence = Convergence::NotTested;
   /// @brief True when every new position and velocity is finite. When false, nothing was changed.
   bool finite = true;
   /// @brief True when this step had to factorise again because the model changed since the last.

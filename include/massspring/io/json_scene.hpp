@@ -109,9 +109,9 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
           "key \"bc\" (pinned positions) is not supported: pinned vertices stay at their "
           "rest positions");
     if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png" &&
-        key != "colliders" && key != "self_collision")
+        key != "colliders" && key != "self_collision" && key != "gravity" && key != "dt")
       throw error("unknown key \"", key,
-                  "\" (expected obj, b, k, m, png, colliders, self_collision)");
+                  "\" (expected obj, b, k, m, png, colliders, self_collision, gravity, dt)");
   }
   auto require = [&](const char* key) -> const Json& {
     const auto it = root.find(key);
@@ -171,6 +171,23 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
     scene.self_collision = parameters;
   }
 
+  if (const auto dt = root.find("dt"); dt != root.end()) scene.dt = number("dt", *dt, true);
+  if (const auto g = root.find("gravity"); g != root.end()) {
+    if (!g->is_array() || g->size() != 3)
+      throw error("key \"gravity\": expected [gx, gy, gz] (three numbers, m/s^2), got ",
+                  g->dump());
+    Vector3<Scalar> gravity;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const Json& v = (*g)[c];
+      const Scalar x = v.is_number() ? static_cast<Scalar>(v.get<double>()) : Scalar(0);
+      if (!v.is_number() || !std::isfinite(x))
+        throw error("key \"gravity\": expected [gx, gy, gz] (three finite numbers, m/s^2), got ",
+                    g->dump());
+      gravity(Eigen::Index(c)) = x;
+    }
+    scene.gravity = gravity;
+  }
+
   std::optional<ObjMesh<Scalar>> loaded = load_obj(obj_path);
   if (!loaded) throw error("key \"obj\": OBJ file ", obj_path.string(), " not found");
   ObjMesh<Scalar> mesh = std::move(*loaded);
@@ -213,7 +230,11 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 ///   keys); a mesh's `"obj"` is relative to the JSON file's folder, its polygons fan-triangulated;
 /// - `"self_collision"` (optional object): self-collision of the cloth's surface, on when present:
 ///   `{"thickness": T, "friction": MU}`, both optional, thickness [m] > 0 (default 0.004), friction
-///   >= 0 (default 0.2); make_system() refuses it for a scene without faces.
+///   >= 0 (default 0.2); make_system() refuses it for a scene without faces;
+/// - `"gravity"` (optional array of 3 finite numbers): the acceleration of gravity [m/s^2];
+///   make_system() adds it as a Gravity term;
+/// - `"dt"` (optional number > 0): the time step the scene is meant to run at [s] (not part of a
+///   system; massspring-simulate runs at it unless given --dt).
 ///
 /// @tparam Scalar float or double
 /// @param[in] json  the .json file
@@ -263,6 +284,10 @@ void write_json_scene(const std::filesystem::path& json, const SceneDescription<
     throw error("stiffness must be finite and >= 0, got ", scene.stiffness);
   if (scene.mass && !(std::isfinite(*scene.mass) && *scene.mass > 0))
     throw error("mass must be finite and > 0, got ", *scene.mass);
+  if (scene.dt && !(std::isfinite(*scene.dt) && *scene.dt > 0))
+    throw error("dt must be finite and > 0, got ", *scene.dt);
+  if (scene.gravity && !scene.gravity->allFinite())
+    throw error("gravity must be finite, got ", massspring::detail::format_row(*scene.gravity));
   if (scene.self_collision) {
     try {
       scene.self_collision->validate();
@@ -307,6 +332,13 @@ void write_json_scene(const std::filesystem::path& json, const SceneDescription<
     out += ",\n  \"self_collision\": {\"thickness\": " +
            detail::json_number(scene.self_collision->thickness) +
            ", \"friction\": " + detail::json_number(scene.self_collision->friction) + "}";
+  if (scene.gravity) {
+    out += ",\n  \"gravity\": [";
+    for (Eigen::Index c = 0; c < 3; ++c)
+      out += (c ? ", " : "") + detail::json_number((*scene.gravity)(c));
+    out += ']';
+  }
+  if (scene.dt) out += ",\n  \"dt\": " + detail::json_number(*scene.dt);
   detail::append_json_colliders(out, json, scene.colliders);
   out += "\n}\n";
   detail::write_text_file_atomically(json, out);

@@ -31,6 +31,8 @@ struct LoadedScene {
   Edges edges = Edges(0, 2);
   /// @brief Every file the loader read: the scene, and for a JSON+OBJ scene its OBJ file.
   std::vector<std::filesystem::path> files;
+  /// @brief A JSON+OBJ scene's "dt": the time step it is meant to run at [s]; absent otherwise.
+  std::optional<double> dt;
   /// @brief The FOSSSim XML scene (its integrator, time step, duration), for .xml files.
   std::optional<FosssimScene> fosssim;
   /// @brief A state scene's "run" object (null otherwise, or when it has none).
@@ -82,6 +84,7 @@ LoadedScene<System> load_json_scene(const std::filesystem::path& path) {
   }
   out.faces = std::move(scene.faces);
   out.edges = std::move(scene.edges);
+  out.dt = scene.dt;
   return out;
 }
 

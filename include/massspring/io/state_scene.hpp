@@ -11,9 +11,7 @@
 ///      "masses": [...], "stiffness": [...], "rest_lengths": [...], "damping": [...],
 ///      "pinned": [i, ...], "pin_targets": [[x, y, z], ...],   // ascending, row r for pinned[r]
 ///      "positions": [[...], ...], "velocities": [[...], ...],
-///      "forces": [{"type": "gravity", "g": [gx, gy, gz]},
-///                 {"type": "constant force", "force": [fx, fy, fz]},
-///                 {"type": "linear drag", "beta": b}],
+///      "forces": [{"type": "gravity", "g": [gx, gy, gz]}, ...],  // io/detail/state_forces.hpp
 ///      "colliders": [{"type": "plane", ...}, ...],  // optional: io/detail/state_colliders.hpp
 ///      "surface": [[a, b, c], ...],                 // optional: io/detail/state_surface.hpp
 ///      "self_collision": {"thickness": h, "friction": mu},   // optional: on when present
@@ -41,6 +39,7 @@
 #include "massspring/forces/gravity.hpp"
 #include "massspring/forces/linear_drag.hpp"
 #include "massspring/io/detail/json_text.hpp"
+#include "massspring/io/detail/state_forces.hpp"
 #include "massspring/io/detail/state_colliders.hpp"
 #include "massspring/io/detail/state_surface.hpp"
 #include "massspring/io/detail/text_file.hpp"
@@ -77,8 +76,9 @@ inline constexpr const char* kStateSceneKey = "massspring_state";
 
 /// @brief Writes a system's whole model and state as a state scene (see the file's comment),
 /// atomically: to `<path>.tmp`, then renamed over `path`.
-/// @param[in] system  any MassSpringSystem; its force terms must be Gravity, ConstantForce or
-///                    LinearDrag (other terms cannot be written: Error, nothing written)
+/// @param[in] system  any MassSpringSystem; its force terms must be Gravity, ConstantForce,
+///                    LinearDrag, GravitationalAttraction or VortexForce (other terms cannot be
+///                    written: Error, nothing written)
 /// @param[in] path    the file to write (its folder must exist)
 /// @param[in] extras  drawing and caller data to store with it (indices checked against the system)
 /// @throws Error naming the path: a force term that cannot be written, a drawing index out of
@@ -87,7 +87,6 @@ inline constexpr const char* kStateSceneKey = "massspring_state";
 template <class System>
 void write_scene(const System& system, const std::filesystem::path& path,
                  const StateSceneExtras& extras = {}) {
-  using Scalar = typename System::Scalar;
   using detail::append_list;
   using detail::append_rows;
   const std::string name = path.string();
@@ -106,30 +105,12 @@ void write_scene(const System& system, const std::filesystem::path& path,
   if (!extras.run.is_null() && !extras.run.is_object())
     throw error("the run data must be a JSON object or null, got ", extras.run.type_name());
 
-  std::string forces = "[";
-  const auto& terms = system.forces();
-  for (int k = 0; k < terms.size(); ++k) {
-    if (k) forces += ",\n    ";
-    if (const auto* g =
-            static_cast<const Gravity<Scalar>*>(terms[k].target(typeid(Gravity<Scalar>)))) {
-      forces += "{\"type\": \"gravity\", \"g\": ";
-      append_list(forces, g->g);
-    } else if (const auto* f = static_cast<const ConstantForce<Scalar>*>(
-                   terms[k].target(typeid(ConstantForce<Scalar>)))) {
-      forces += "{\"type\": \"constant force\", \"force\": ";
-      append_list(forces, f->force);
-    } else if (const auto* d = static_cast<const LinearDrag<Scalar>*>(
-                   terms[k].target(typeid(LinearDrag<Scalar>)))) {
-      forces += "{\"type\": \"linear drag\", \"beta\": ";
-      detail::append_real(forces, double(d->beta));
-    } else {
-      throw error("force term ", k, " (", terms[k].name,
-                  ") cannot be written: a state scene holds gravity, constant force and linear "
-                  "drag terms");
-    }
-    forces += '}';
+  std::string forces;
+  try {
+    detail::append_state_forces(forces, system);
+  } catch (const Error& e) {
+    throw error(e.what());
   }
-  forces += ']';
 
   std::string out = "{\n  \"massspring_state\": 1,\n  \"rest_positions\": ";
   append_rows(out, system.rest_positions());
@@ -265,13 +246,6 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
     for (std::size_t i = 0; i < a.size(); ++i) v(Eigen::Index(i)) = number(key, a[i], i);
     return v;
   };
-  auto vector3 = [&](const char* key, const Json& v, std::size_t row) {
-    if (!v.is_array() || v.size() != 3)
-      throw error("key \"forces\": entry ", row, ": \"", key, "\" must be [x, y, z]");
-    Vector3<Scalar> out;
-    for (std::size_t c = 0; c < 3; ++c) out(Eigen::Index(c)) = number("forces", v[c], row);
-    return out;
-  };
 
   const Points<Scalar> rest = rows("rest_positions", 0, false);
   const auto n = std::size_t(rest.rows());
@@ -292,27 +266,7 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
       out.system.pin(index("pinned", pinned[r], r), targets.row(Eigen::Index(r)).transpose());
     out.system.set_positions(positions);
     out.system.set_velocities(velocities);
-    const Json& forces = require("forces");
-    for (std::size_t k = 0; k < forces.size(); ++k) {
-      const Json& f = forces[k];
-      const auto type = f.is_object() ? f.find("type") : f.end();
-      if (!f.is_object() || type == f.end() || !type->is_string() || f.size() != 2)
-        throw Error(detail::message(
-            "key \"forces\": entry ", k,
-            ": expected {\"type\": \"gravity\", \"g\": [...]}, {\"type\": \"constant force\", "
-            "\"force\": [...]} or {\"type\": \"linear drag\", \"beta\": b}"));
-      const std::string t = type->get<std::string>();
-      if (t == "gravity" && f.contains("g")) {
-        out.system.add_force(Gravity<Scalar>(vector3("g", f["g"], k)));
-      } else if (t == "constant force" && f.contains("force")) {
-        out.system.add_force(ConstantForce<Scalar>(vector3("force", f["force"], k)));
-      } else if (t == "linear drag" && f.contains("beta")) {
-        out.system.add_force(LinearDrag<Scalar>(number("forces", f["beta"], k)));
-      } else {
-        throw Error(
-            detail::message("key \"forces\": entry ", k, ": unknown force term ", f.dump()));
-      }
-    }
+    detail::parse_state_forces(require("forces"), out.system);
     if (const auto colliders = root.find("colliders"); colliders != root.end())
       for (auto& c : detail::parse_state_colliders<Scalar>(*colliders))
         out.system.add_collider(std::move(c));

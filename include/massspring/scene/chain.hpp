@@ -4,9 +4,11 @@
 /// horizontal chain.
 
 #include <cmath>
+#include <optional>
 
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
+#include "massspring/scene/placement.hpp"
 #include "massspring/scene/scene_description.hpp"
 #include "massspring/types.hpp"
 
@@ -20,7 +22,8 @@ enum class ChainPins {
 };
 
 /// @brief Parameters of make_chain(). Point i has index i and lies at i * length / (points - 1)
-/// along `direction`, point 0 at the origin.
+/// along `direction` from point 0, which lies at `origin` (default the origin), or the chain's
+/// middle at `center`.
 struct ChainOptions {
   /// @brief Number of points, >= 2.
   int points = 10;
@@ -34,6 +37,11 @@ struct ChainOptions {
   double stiffness = 500;
   /// @brief Mass of every point [kg], finite and > 0.
   double mass = 1;
+  /// @brief Where point 0 lies [m] (default: the origin). At most one of origin and center.
+  std::optional<Vector3<double>> origin;
+  /// @brief Where the middle of the chain (the centre of its bounding box) lies [m]. At most one
+  /// of origin and center.
+  std::optional<Vector3<double>> center;
 };
 
 /// @brief A straight chain: `points` points evenly spaced along `direction`, springs between
@@ -70,6 +78,7 @@ inline SceneDescription<double> make_chain(const ChainOptions& o) {
   }
   s.stiffness = o.stiffness;
   s.mass = o.mass;
+  detail::place(s, o.origin, o.center, "make_chain");
   return s;
 }
 

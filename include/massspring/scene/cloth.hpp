@@ -9,6 +9,7 @@
 
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
+#include "massspring/scene/placement.hpp"
 #include "massspring/scene/scene_description.hpp"
 
 namespace massspring {
@@ -27,7 +28,7 @@ enum class ClothPins {
   TopEdge,     ///< every point of row 0
 };
 
-/// @brief Where the cloth lies at rest.
+/// @brief Where the cloth lies at rest (then moved to ClothOptions::origin or center).
 enum class ClothPlane {
   Vertical,    ///< the x-y plane, rows going down: point (r, c) at (c dx, -r dy, 0)
   Horizontal,  ///< the x-z plane, rows going along +z: point (r, c) at (c dx, 0, r dy)
@@ -56,6 +57,11 @@ struct ClothOptions {
   /// @brief Mass of every point [kg], > 0. When absent: the faces' lumped Voronoi areas (density
   /// 1 kg/m^2), or with ClothShear::None (no faces) width * height / #points for every point.
   std::optional<double> mass;
+  /// @brief Where point (0, 0) lies [m] (default: the origin). At most one of origin and center.
+  std::optional<Vector3<double>> origin;
+  /// @brief Where the middle of the cloth (the centre of its bounding box) lies [m], e.g. above
+  /// the ball it is dropped on. At most one of origin and center.
+  std::optional<Vector3<double>> center;
 };
 
 /// @brief A rectangular cloth grid. Springs: structural (rows, columns), the chosen diagonals and,
@@ -130,6 +136,7 @@ inline SceneDescription<double> make_cloth(const ClothOptions& o) {
   s.stiffness = o.stiffness;
   s.mass = o.mass;
   if (!s.mass && o.shear == ClothShear::None) s.mass = o.width * o.height / (rows * cols);
+  detail::place(s, o.origin, o.center, "make_cloth");
   return s;
 }
 

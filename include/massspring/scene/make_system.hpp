@@ -8,6 +8,7 @@
 
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
+#include "massspring/forces/gravity.hpp"
 #include "massspring/scene/face_springs.hpp"
 #include "massspring/scene/scene_description.hpp"
 #include "massspring/scene/voronoi_masses.hpp"
@@ -63,7 +64,8 @@ void set_face_surface(System& system, const std::vector<std::vector<int>>& faces
 /// @brief Builds the system a scene describes: springs from face_springs(), rest lengths from the
 /// vertices, uniform stiffness, the given uniform mass or else voronoi_masses(), pins at the rest
 /// positions, the surface (the faces split into fans of triangles, fan_triangles(); none without
-/// faces), self-collision when the scene asks for it, then the colliders in their order.
+/// faces), self-collision when the scene asks for it, then the colliders in their order, and a
+/// Gravity term when the scene has `gravity` (its `dt` is not part of a system).
 /// @throws Error for invalid indices, a missing mass without faces, a vertex of zero mass, a face
 /// with a fan triangle of zero area (naming the face and the triangle), self-collision asked for
 /// without faces or with parameters out of range, or a collider make_collider() refuses (named
@@ -109,6 +111,7 @@ System make_system(const SceneDescription<Scalar>& scene) {
           detail::message("colliders[", c, "] (", contact::to_string(d.shape), "): ", e.what()));
     }
   }
+  if (scene.gravity) system.add_force(Gravity<S>(scene.gravity->template cast<S>()));
   return system;
 }
 

@@ -7,6 +7,7 @@
 
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
+#include "massspring/scene/placement.hpp"
 #include "massspring/scene/scene_description.hpp"
 
 namespace massspring {
@@ -19,7 +20,8 @@ enum class NetPins {
 };
 
 /// @brief Parameters of make_net(). Point (r, c) has index r * columns + c and lies in the
-/// horizontal x-z plane at (c dx, 0, r dz), dx = width / (columns - 1), dz = depth / (rows - 1).
+/// horizontal x-z plane at (c dx, 0, r dz), dx = width / (columns - 1), dz = depth / (rows - 1),
+/// then moved so that point 0 lies at `origin`, or the net's middle at `center`.
 struct NetOptions {
   /// @brief Points along x, >= 2.
   int columns = 8;
@@ -35,6 +37,11 @@ struct NetOptions {
   double stiffness = 300;
   /// @brief Mass of every point [kg], finite and > 0.
   double mass = 1;
+  /// @brief Where point (0, 0) lies [m] (default: the origin). At most one of origin and center.
+  std::optional<Vector3<double>> origin;
+  /// @brief Where the middle of the net (the centre of its bounding box) lies [m]. At most one of
+  /// origin and center.
+  std::optional<Vector3<double>> center;
 };
 
 /// @brief A rectangular net: columns x rows points, springs between neighbours along each row
@@ -82,6 +89,7 @@ inline SceneDescription<double> make_net(const NetOptions& o) {
   }
   s.stiffness = o.stiffness;
   s.mass = o.mass;
+  detail::place(s, o.origin, o.center, "make_net");
   return s;
 }
 

@@ -38,6 +38,12 @@ struct SceneDescription {
   std::vector<ColliderDescription<Scalar>> colliders;
   /// @brief Self-collision of the surface (the key "self_collision"); absent: off. Needs faces.
   std::optional<contact::SelfCollision<Scalar>> self_collision;
+  /// @brief The acceleration of gravity [m/s^2] (the key "gravity"); make_system() adds it as a
+  /// Gravity term. Absent: no term.
+  std::optional<Vector3<Scalar>> gravity;
+  /// @brief The time step the scene is meant to run at [s], > 0 (the key "dt"). Not part of a
+  /// system: a program reads it here (massspring-simulate uses it unless --dt is given).
+  std::optional<Scalar> dt;
 };
 
 }  // namespace massspring

@@ -448,6 +448,9 @@ StepReport FastMassSpring<System, Cholesky_>::step(System& system) {
       result = local_global::guarded_loop(it, anderson_, cap, tolerance, report, rejections_);
       break;
   }
+  report.convergence = !(tolerance > 0) ? Convergence::NotTested
+                       : report.converged ? Convergence::Converged
+                                          : Convergence::NotConverged;
   return commit(system, result, report);
 }
 // precompute() and step() are defined outside the class, so they are not inline: with

@@ -162,8 +162,10 @@ struct FosssimScene {
   [[nodiscard]] long long steps() const { return steps_for(dt); }
   /// @brief ceil(duration / h) with the same rounding rule, for another step h > 0 (saturating
   /// at the largest long long).
-  [[nodiscard]] long long steps_for(double h) const {
-    const double q = duration / h;
+  [[nodiscard]] long long steps_for(double h) const { return steps_of(duration, h); }
+  /// @brief ceil(time / h) for a time [s] >= 0 and a step h > 0 [s], with the same rounding rule.
+  [[nodiscard]] static long long steps_of(double time, double h) {
+    const double q = time / h;
     // saturate rather than overflow (an absurd duration / h is still a number of steps)
     if (!(q < 9.2e18)) return std::numeric_limits<long long>::max();
     const double nearest = std::round(q);

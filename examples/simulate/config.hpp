@@ -1,0 +1,87 @@
+#pragma once
+// massspring-simulate's options as read from the command line (simulate.cpp), and what a run needs
+// besides them (the loaded scene).
+
+#include <filesystem>
+#include <massspring/io.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace simulate {
+
+namespace fs = std::filesystem;
+
+/// Which option sets the length of the run.
+enum class Length { Default, Steps, Frames, Duration };
+
+struct Config {
+  std::string scene;     // a .json or .xml scene file, or empty
+  std::string generate;  // cloth[:CxR], chain[:N], net[:CxR], or empty
+  // How long the run is: at most one of --steps, --frames, --duration; none: 300 steps (an XML
+  // scene: its duration)
+  Length length = Length::Default;
+  long long steps = 300;  // --steps: steps to take
+  long long frames = 0;   // --frames: frames written after the first; steps = frames x every
+  double duration = 0;    // --duration [s]: steps = duration / dt, rounded up
+  double progress = 10;   // --progress [s]: wall-clock seconds between progress lines; 0: none
+  double dt = 1.0 / 30;
+  bool dt_given = false;
+  std::string integrator = "fast-mass-spring";
+  bool integrator_given = false;
+  double shrink = 0;  // rest lengths l0(t) = l0(0) exp(-shrink t)
+  // FastMassSpringOptions
+  int iterations = 50;
+  double tolerance = 0;
+  std::string pins = "exact";
+  double penalty_weight = 1e10;
+  std::string acceleration = "none";
+  double chebyshev_rho = 0;
+  bool rho_given = false;
+  double chebyshev_gamma = 1;
+  int chebyshev_delay = 2;
+  int chebyshev_estimate = 100;
+  int anderson_window = 5;
+  int threads = 1;
+  std::string ordering = "auto";
+  std::string initial_guess = "current";
+  // BackwardEulerOptions
+  int newton_iterations = 20;
+  double newton_tolerance = 1e-10;
+  std::string line_search = "on";
+  // options given that belong to one integrator or acceleration
+  std::vector<std::string> given_fast_mass_spring, given_chebyshev, given_anderson,
+      given_backward_euler;
+  std::vector<double> force{0, 0, 0};
+  std::vector<double> gravity{0, -9.8, 0};
+  bool force_given = false, gravity_given = false;
+  std::string storage = "sparse";
+  std::string precision = "double";
+  std::string out;         // folder for frame_NNNNN.obj
+  std::string csv;         // trajectory file
+  std::string save_state;  // state file
+  int save_every = 0;
+  bool overwrite = false;
+  int every = 1;
+  bool quiet = false;
+  double guard_growth = 100;  // DivergenceGuard growth; 0: no energy check
+  // --self-collision: the thickness [m] (> 0), with the default friction; unset: the scene's own
+  std::optional<double> self_collision;
+};
+
+// What a run needs besides the options.
+template <class System>
+struct Setup {
+  System system;
+  std::vector<std::vector<int>> faces;  // drawn in the OBJ frames
+  massspring::Edges edges;              // drawn in the OBJ frames (XML: every edge)
+  std::vector<fs::path> inputs;         // every file the run reads
+  std::optional<massspring::io::FosssimScene> fosssim;
+  std::optional<double> dt;  // a JSON+OBJ scene's "dt" [s]
+  bool state = false;       // a state saved by --save-state
+  nlohmann::json run_data;  // its "run" object
+  std::string name;         // the scene file or "--generate SPEC"
+};
+
+}  // namespace simulate
