@@ -54,3 +54,23 @@ TEST_CASE("BoxHash: boxes that only touch overlap; negative coordinates hash lik
              [&](int i) { hits.push_back(i); });
   CHECK(hits == std::vector<int>{1});
 }
+
+TEST_CASE("BoxHash: a box far larger than the cells is listed, not hashed, and still found once") {
+  // 1 km boxes among 1 mm cells: 10^18 cells each, were they hashed.
+  std::mt19937 rng(11);
+  std::vector<Box> boxes;
+  for (int i = 0; i < 100; ++i) boxes.push_back(random_box(rng, 1.0, 0.01));
+  boxes.push_back({Eigen::Vector3d(-500, -500, -500), Eigen::Vector3d(500, 500, 500)});
+  boxes.push_back({Eigen::Vector3d(2, 2, 2), Eigen::Vector3d(900, 900, 900)});
+  massspring::contact::BoxHash<double> hash;
+  hash.build(boxes, 1e-3);
+  std::vector<Box> queries;
+  for (int q = 0; q < 100; ++q) queries.push_back(random_box(rng, 1.2, 0.02));
+  queries.push_back({Eigen::Vector3d(-1000, -1, -1), Eigen::Vector3d(1000, 1, 1)});  // large too
+  for (const Box& query : queries) {
+    std::vector<int> seen(boxes.size(), 0);
+    hash.query(query, [&](int i) { ++seen[std::size_t(i)]; });
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      REQUIRE(seen[i] == int(boxes[i].overlaps(query)));
+  }
+}

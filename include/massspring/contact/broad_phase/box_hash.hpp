@@ -38,16 +38,28 @@ class BoxHash {
  public:
   using Box = AlignedBox3<Scalar>;
 
+  /// @brief A box that touches more cells than this (a ball's centre with its gap among the cells
+  /// of a fine cloth) is not hashed: it is kept in a list every query tests; a query box that
+  /// large tests every stored box. Either way the cost stays O(boxes), never O(cells).
+  static constexpr double kMaxCells = 4096;
+
   /// @brief Stores `boxes` (kept by reference until the next build) with cells of side `cell` [m]
   /// (> 0, finite; the boxes finite). Pick the cell about the size of a typical box: a box enters
-  /// every cell it touches. A box changed after build() stays in the cells of its old value, and
-  /// query() tests the new value: change one only to tighten it, or filter it out of the visits.
+  /// every cell it touches. A box changed after build() stays in the cells of its old value (or
+  /// in the large list), and query() tests the new value: change one only to tighten it, or
+  /// filter it out of the visits.
   void build(const std::vector<Box>& boxes, Scalar cell) {
     boxes_ = &boxes;
     inv_cell_ = Scalar(1) / cell;
     const std::size_t m = boxes.size();
     keys_.clear();
-    for (const Box& b : boxes) for_each_cell(b, [&](std::uint64_t key) { keys_.push_back(key); });
+    large_.clear();
+    for (std::size_t i = 0; i < m; ++i) {
+      if (too_large(boxes[i]))
+        large_.push_back(int(i));
+      else
+        for_each_cell(boxes[i], [&](std::uint64_t key) { keys_.push_back(key); });
+    }
     const std::size_t entries = keys_.size();
     std::size_t buckets = 1;
     while (buckets < entries + 1) buckets *= 2;
@@ -58,8 +70,12 @@ class BoxHash {
     for (std::size_t k = 0; k < buckets; ++k) start_[k + 1] += start_[k];
     fill_.assign(start_.begin(), start_.end() - 1);
     ids_.resize(entries);
-    std::size_t next = 0;
+    std::size_t next = 0, large = 0;
     for (std::size_t i = 0; i < m; ++i) {
+      if (large < large_.size() && large_[large] == int(i)) {
+        ++large;
+        continue;
+      }
       const std::size_t count = cell_count(boxes[i]);
       for (std::size_t c = 0; c < count; ++c) ids_[fill_[keys_[next++]]++] = int(i);
     }
@@ -70,11 +86,16 @@ class BoxHash {
   /// @brief Calls visit(i) once for each stored box i that overlaps `q`.
   template <class Visit>
   void query(const Box& q, Visit&& visit) {
+    const auto& boxes = *boxes_;
+    if (too_large(q)) {
+      for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (boxes[i].overlaps(q)) visit(int(i));
+      return;
+    }
     if (++query_ == 0) {  // the stamps wrapped: clear them
       std::fill(stamp_.begin(), stamp_.end(), 0u);
       query_ = 1;
     }
-    const auto& boxes = *boxes_;
     for_each_cell(q, [&](std::uint64_t key) {
       key &= mask_;
       for (std::uint32_t k = start_[key]; k < start_[key + 1]; ++k) {
@@ -84,6 +105,8 @@ class BoxHash {
         if (boxes[std::size_t(i)].overlaps(q)) visit(i);
       }
     });
+    for (int i : large_)
+      if (boxes[std::size_t(i)].overlaps(q)) visit(i);
   }
 
  private:
@@ -98,6 +121,14 @@ class BoxHash {
       r.hi[a] = static_cast<long long>(std::floor(b.hi(a) * inv_cell_));
     }
     return r;
+  }
+  // Whether b touches more than kMaxCells cells (counted in floating point: no overflow).
+  bool too_large(const Box& b) const {
+    double cells = 1;
+    for (int a = 0; a < 3; ++a)
+      cells *=
+          double(std::floor(b.hi(a) * inv_cell_)) - double(std::floor(b.lo(a) * inv_cell_)) + 1;
+    return !(cells <= kMaxCells);
   }
   std::size_t cell_count(const Box& b) const {
     const Range r = range(b);
@@ -124,6 +155,7 @@ class BoxHash {
   std::vector<std::uint64_t> keys_;  // build(): each box's cells' keys, in order
   std::vector<std::uint32_t> start_, fill_;
   std::vector<int> ids_;
+  std::vector<int> large_;  // the boxes too large to hash, ascending
   std::vector<unsigned> stamp_;
   unsigned query_ = 0;
 };
