@@ -120,10 +120,11 @@ int run_scene(const Config& c) {
 int main(int argc, char** argv) {
   Config c;
   // Numbers are taken as text and read by simulate/numbers.hpp (messages quote the text).
-  std::string steps = "300", frames, duration, progress = "10", dt = "0.0333333", shrink = "0", iterations = "50", tolerance = "0",
-              penalty_weight = "1e10", every = "1", guard_growth = "100", rho = "0", gamma = "1",
-              delay = "2", estimate = "100", window = "5", threads = "1", newton_iterations = "20",
-              newton_tolerance = "1e-10", save_every = "0", self_collision;
+  std::string steps = "300", frames, duration, progress = "10", dt = "0.0333333", shrink = "0",
+              iterations = "50", tolerance = "0", penalty_weight = "1e10", every = "1",
+              guard_growth = "100", rho = "0", gamma = "1", delay = "2", estimate = "100",
+              window = "5", threads = "1", newton_iterations = "20", newton_tolerance = "1e-10",
+              save_every = "0", self_collision;
   std::vector<std::string> force{"0", "0", "0"}, gravity{"0", "-9.8", "0"};
 
   CLI::App app{

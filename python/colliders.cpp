@@ -1,5 +1,5 @@
-// massspring.Collider (contact/colliders/collider.hpp): plane, sphere, capsule, box, mesh; friction,
-// restitution, thickness, pose, velocity, angular velocity; and the system's colliders.
+// massspring.Collider (contact/colliders/collider.hpp): plane, sphere, capsule, box, mesh;
+// friction, restitution, thickness, pose, velocity, angular velocity; and the system's colliders.
 // system.add_collider(c) stores a copy: change a collider in the system with
 // system.set_collider(i, c) (system.collider(i) returns a copy), never through a reference that
 // a later add_collider could invalidate.

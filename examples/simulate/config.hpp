@@ -79,9 +79,9 @@ struct Setup {
   std::vector<fs::path> inputs;         // every file the run reads
   std::optional<massspring::io::FosssimScene> fosssim;
   std::optional<double> dt;  // a JSON+OBJ scene's "dt" [s]
-  bool state = false;       // a state saved by --save-state
-  nlohmann::json run_data;  // its "run" object
-  std::string name;         // the scene file or "--generate SPEC"
+  bool state = false;        // a state saved by --save-state
+  nlohmann::json run_data;   // its "run" object
+  std::string name;          // the scene file or "--generate SPEC"
 };
 
 }  // namespace simulate

@@ -24,10 +24,11 @@ class Progress {
     last_ = now;
     const double elapsed = seconds(start_, now);
     const double left = elapsed * double(steps_ - done) / double(done);
-    std::printf("step %d of %d (%.0f%%): %.4g s of %.4g s simulated; %.1f s elapsed, about %.1f s "
-                "left\n",
-                done, steps_, 100.0 * double(done) / double(steps_), dt_ * double(done),
-                dt_ * double(steps_), elapsed, left);
+    std::printf(
+        "step %d of %d (%.0f%%): %.4g s of %.4g s simulated; %.1f s elapsed, about %.1f s "
+        "left\n",
+        done, steps_, 100.0 * double(done) / double(steps_), dt_ * double(done),
+        dt_ * double(steps_), elapsed, left);
     std::fflush(stdout);
   }
 

@@ -127,8 +127,8 @@ Plan resolve(const Config& c, const Setup<System>& s) {
       break;
     case Length::Frames:
       steps = c.frames * c.every;
-      length = "--frames " + std::to_string(c.frames) + " x --every " + std::to_string(c.every) +
-               " =";
+      length =
+          "--frames " + std::to_string(c.frames) + " x --every " + std::to_string(c.every) + " =";
       break;
     case Length::Duration:
       steps = massspring::io::FosssimScene::steps_of(c.duration, p.dt);
@@ -140,9 +140,10 @@ Plan resolve(const Config& c, const Setup<System>& s) {
     throw Error(length + " " + std::to_string(steps) +
                 " steps: more than 10^8; ask for fewer, or a larger --dt");
   if (p.first_frame + steps > 2000000000)
-    throw Error(length + " " + std::to_string(steps) + " steps: frame numbers would pass "
-                "2000000000 (" + s.name + " starts at frame " + std::to_string(p.first_frame) +
-                ")");
+    throw Error(length + " " + std::to_string(steps) +
+                " steps: frame numbers would pass "
+                "2000000000 (" +
+                s.name + " starts at frame " + std::to_string(p.first_frame) + ")");
   p.steps = int(steps);
 
   auto refuse = [&](const std::vector<std::string>& given, const std::string& needs, bool applies) {
@@ -463,8 +464,7 @@ int run(const Config& c, Setup<System>& s) {
       gravity(k) = Scalar(c.gravity[std::size_t(k)]);
       force(k) = Scalar(c.force[std::size_t(k)]);
     }
-    if (!gravity.isZero() && !own_gravity)
-      system.add_force(massspring::Gravity<Scalar>(gravity));
+    if (!gravity.isZero() && !own_gravity) system.add_force(massspring::Gravity<Scalar>(gravity));
     if (!force.isZero()) system.add_force(massspring::ConstantForce<Scalar>(force));
   }
   if (!c.save_state.empty())

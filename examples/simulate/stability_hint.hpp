@@ -61,8 +61,9 @@ struct StabilityHint {
   /// The hint for a run at step `dt` [s] that diverged, or "" (an implicit integrator).
   [[nodiscard]] std::string text(double dt, const std::string& integrator) const {
     if (!stable || !stable_symplectic) return "";
-    const std::string implicit = "an implicit integrator (--integrator backward-euler or "
-                                 "fast-mass-spring) is stable at any --dt";
+    const std::string implicit =
+        "an implicit integrator (--integrator backward-euler or "
+        "fast-mass-spring) is stable at any --dt";
     if (*stable == 0)
       return "hint: " + integrator +
              " is unstable at every --dt on this scene (springs without linear drag); "

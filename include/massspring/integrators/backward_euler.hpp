@@ -147,7 +147,7 @@ class BackwardEuler {
       }
     }
     // Newton tests its tolerance every iteration; the linearised step is one solve.
-    report.convergence = !newton           ? Convergence::NotTested
+    report.convergence = !newton            ? Convergence::NotTested
                          : report.converged ? Convergence::Converged
                                             : Convergence::NotConverged;
     if (has_potential) report.energy = double(objective(system, x_, moved_));

@@ -174,8 +174,7 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
   if (const auto dt = root.find("dt"); dt != root.end()) scene.dt = number("dt", *dt, true);
   if (const auto g = root.find("gravity"); g != root.end()) {
     if (!g->is_array() || g->size() != 3)
-      throw error("key \"gravity\": expected [gx, gy, gz] (three numbers, m/s^2), got ",
-                  g->dump());
+      throw error("key \"gravity\": expected [gx, gy, gz] (three numbers, m/s^2), got ", g->dump());
     Vector3<Scalar> gravity;
     for (std::size_t c = 0; c < 3; ++c) {
       const Json& v = (*g)[c];

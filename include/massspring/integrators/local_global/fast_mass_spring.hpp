@@ -448,7 +448,7 @@ StepReport FastMassSpring<System, Cholesky_>::step(System& system) {
       result = local_global::guarded_loop(it, anderson_, cap, tolerance, report, rejections_);
       break;
   }
-  report.convergence = !(tolerance > 0) ? Convergence::NotTested
+  report.convergence = !(tolerance > 0)   ? Convergence::NotTested
                        : report.converged ? Convergence::Converged
                                           : Convergence::NotConverged;
   return commit(system, result, report);

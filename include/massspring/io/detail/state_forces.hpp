@@ -43,16 +43,20 @@ void append_state_forces(std::string& out, const System& system) {
   out += '[';
   for (int k = 0; k < terms.size(); ++k) {
     if (k) out += ",\n    ";
-    if (const auto* g = static_cast<const Gravity<Scalar>*>(terms[k].target(typeid(Gravity<Scalar>)))) {
+    if (const auto* g =
+            static_cast<const Gravity<Scalar>*>(terms[k].target(typeid(Gravity<Scalar>)))) {
       out += "{\"type\": \"gravity\", \"g\": ";
       append_list(out, g->g);
-    } else if (const auto* f = static_cast<const ConstantForce<Scalar>*>(terms[k].target(typeid(ConstantForce<Scalar>)))) {
+    } else if (const auto* f = static_cast<const ConstantForce<Scalar>*>(
+                   terms[k].target(typeid(ConstantForce<Scalar>)))) {
       out += "{\"type\": \"constant force\", \"force\": ";
       append_list(out, f->force);
-    } else if (const auto* d = static_cast<const LinearDrag<Scalar>*>(terms[k].target(typeid(LinearDrag<Scalar>)))) {
+    } else if (const auto* d = static_cast<const LinearDrag<Scalar>*>(
+                   terms[k].target(typeid(LinearDrag<Scalar>)))) {
       out += "{\"type\": \"linear drag\", \"beta\": ";
       append_real(out, double(d->beta));
-    } else if (const auto* a = static_cast<const GravitationalAttraction<Scalar>*>(terms[k].target(typeid(GravitationalAttraction<Scalar>)))) {
+    } else if (const auto* a = static_cast<const GravitationalAttraction<Scalar>*>(
+                   terms[k].target(typeid(GravitationalAttraction<Scalar>)))) {
       out += "{\"type\": \"gravitational attraction\", \"pairs\": [";
       for (std::size_t p = 0; p < a->pairs().size(); ++p) {
         const auto& pair = a->pairs()[p];
@@ -66,7 +70,8 @@ void append_state_forces(std::string& out, const System& system) {
       }
       out += "], \"softening\": ";
       append_real(out, double(a->softening()));
-    } else if (const auto* v = static_cast<const VortexForce<Scalar>*>(terms[k].target(typeid(VortexForce<Scalar>)))) {
+    } else if (const auto* v = static_cast<const VortexForce<Scalar>*>(
+                   terms[k].target(typeid(VortexForce<Scalar>)))) {
       out += "{\"type\": \"vortex force\", \"pairs\": [";
       for (std::size_t p = 0; p < v->pairs().size(); ++p) {
         const auto& pair = v->pairs()[p];
