@@ -1,16 +1,16 @@
-// Factorisations and orders of FastMassSpring's Q compared (exact pins, dt = 1/30 s, k = 1000 N/m,
-// Q in the points' order): for each, nnz(L), the factorisation (compute(): ordering, symbolic,
+// Factorizations and orders of FastMassSpring's Q compared (exact pins, dt = 1/30 s, k = 1000 N/m,
+// Q in the points' order): for each, nnz(L), the factorization (compute(): ordering, symbolic,
 // numeric) and one fused n x 3 substitution with that factor. On the curtain and the cloth grids
 // 128^2, 256^2 and 512^2 (support/scenes.hpp's cloths).
 //
 // Benchmarks `Factorize/<method>/<scene>`, method:
 //   EigenAMD, EigenND, EigenCOLAMD, EigenNatural   SparseCholesky (Eigen's SimplicialLLT) with
 //       AMD, geometric nested dissection of the rest positions (massspring::nested_dissection;
-//       its time counted in the factorisation's), COLAMD (up to 20000 rows: it fills ~10x more)
+//       its time counted in the factorization's), COLAMD (up to 20000 rows: it fills ~10x more)
 //       and the natural order (up to 20000 rows: a band);
 //   CholmodDefault, CholmodAMD, CholmodMETIS, CholmodNESDIS   CholmodCholesky (supernodal) with
 //       its own choice, AMD, METIS and NESDIS, only when built with massspring::cholmod.
-// The time is one factorisation (one iteration per repetition, 3 repetitions; read cpu_time, the
+// The time is one factorization (one iteration per repetition, 3 repetitions; read cpu_time, the
 // process's CPU time, all threads). Counters: rows, nnz_L, solve_ms (the median CPU time of 21
 // substitutions, 5 above 100000 rows).
 //
@@ -70,7 +70,7 @@ void bm_factorize(benchmark::State& state, const Problem& p, Compute compute) {
   Cholesky llt;
   for (auto _ : state) {
     if (!compute(llt)) {
-      state.SkipWithError("factorisation failed");
+      state.SkipWithError("factorization failed");
       return;
     }
   }

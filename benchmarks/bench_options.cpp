@@ -1,7 +1,7 @@
 // What FastMassSpring's choices cost, each against the default in the same run: the SIMD code
 // off (options.simd = false), exact pins instead of penalty pins, float instead of double (exact
 // pins: penalty pins of 1e10 need double), AMD's order instead of the one FillOrdering::Auto
-// picks, and Dense storage instead of Sparse (cloth32 only: Dense's Q is n x n, its factorisation
+// picks, and Dense storage instead of Sparse (cloth32 only: Dense's Q is n x n, its factorization
 // grows as n^3). Scenes and settings: support/scenes.hpp (cloth32, cloth64, cloth128, curtain,
 // flag, skirt; dt = 1/30 s, 50 iterations per step).
 //

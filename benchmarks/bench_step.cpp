@@ -5,7 +5,7 @@
 // curtain, flag, skirt; dt = 1/30 s, 50 iterations per step).
 //
 // Benchmarks (`<what>/<solver>/<scene>`):
-//   Precompute/Sparse, Precompute/Seed   build Q and factorise (ours in the order
+//   Precompute/Sparse, Precompute/Seed   build Q and factorize (ours in the order
 //   FillOrdering::Auto
 //                                        picks, the seed in AMD's)
 //   Step/Sparse, Step/Seed               one step of 50 iterations

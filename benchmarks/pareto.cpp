@@ -13,7 +13,7 @@
 // docs/images/pareto_*.png (scripts/pareto.sh does all of it). Progress goes to stderr.
 //
 // Timing: wall clock (std::chrono::steady_clock) of the stepping loop only; precompute (one
-// factorisation) is excluded, as it is paid once per scene. A plain program rather than Google
+// factorization) is excluded, as it is paid once per scene. A plain program rather than Google
 // Benchmark because each point is one long simulation, not a loop of identical calls. A run whose
 // projected time (from its first steps) exceeds the budget is not finished: it is written with
 // status "skipped" and its projected cost, and it is left out of the fronts. It cannot be the
@@ -305,7 +305,7 @@ std::vector<LiuRow> liu_table(int n, bool quick, std::string& description) {
   description = scene.description + "; the frame after 10 frames (dt = 1/30 s) of backward Euler";
   BackwardEulerOptions<double> exact;
   exact.tolerance = 1e-14;
-  exact.max_iterations = 100;
+  exact.iterations = 100;
   System converged = start;
   BackwardEuler<System> newton(exact);
   newton.precompute(converged, h);
@@ -330,7 +330,7 @@ std::vector<LiuRow> liu_table(int n, bool quick, std::string& description) {
                            e_star, 3));
   }
   BackwardEulerOptions<double> one;
-  one.max_iterations = 1;
+  one.iterations = 1;
   rows.push_back(liu_row(start, BackwardEuler<System>(one), h, "Newton", e_start, e_star, 3));
   rows.push_back(
       liu_row(start, BackwardEuler<System>(exact), h, "Newton, converged", e_start, e_star, 1));

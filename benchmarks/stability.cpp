@@ -148,7 +148,7 @@ struct Run {
          ke_max = kNaN, gain = kNaN;
   std::vector<double> blocks = std::vector<double>(kBlocks, kNaN);  // mean E per block
   double wall = 0;
-  long unconverged = 0;  // BackwardEuler-Newton: steps that stopped at max_iterations
+  long unconverged = 0;  // BackwardEuler-Newton: steps that stopped at iterations
   long indefinite = 0;   // BackwardEuler: steps whose solve was not a Cholesky one
   // Deformation over the accepted steps: the extreme spring lengths l / l0 (every step), and the
   // smallest stability_limit (symplectic Euler) of the states visited over that at the initial

@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
       const ms::StepReport report = symplectic ? se.step(sys) : solver.step(sys);
       stepping += std::chrono::steady_clock::now() - t0;
       if (!report.ok()) {
-        std::fprintf(stderr, "massspring-pole: step %d failed (not finite or not factorised)\n",
+        std::fprintf(stderr, "massspring-pole: step %d failed (not finite or not factorized)\n",
                      frame);
         return 2;
       }

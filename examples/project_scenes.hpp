@@ -65,7 +65,7 @@ inline std::vector<std::pair<std::string, SceneDescription<double>>> project_sce
   scenes.emplace_back("flag", make_cloth(flag_recipe()));
   scenes.emplace_back("curtain", make_cloth(curtain_recipe()));
 
-  // Contact (issue 22; docs/contact.md). Cloths of 1 kg/m^2, k = 1000 N/m, dropped from rest;
+  // Contact (docs/contact.md). Cloths of 1 kg/m^2, k = 1000 N/m, dropped from rest;
   // small enough to simulate in seconds with the local-global solver at dt = 1/30.
   using Shape = contact::ColliderShape;
   {  // drape: a 1.2 m cloth dropped over a ball onto the floor, friction 0.3 on both

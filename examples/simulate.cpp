@@ -120,11 +120,17 @@ int run_scene(const Config& c) {
 int main(int argc, char** argv) {
   Config c;
   // Numbers are taken as text and read by simulate/numbers.hpp (messages quote the text).
+  // The solvers' defaults are the library's (Config's, from FastMassSpringOptions and
+  // BackwardEulerOptions), written as numbers are in messages.
+  const auto text = [](auto x) { return massspring::detail::message(x); };
   std::string steps = "300", frames, duration, progress = "10", dt = "0.0333333", shrink = "0",
-              iterations = "50", tolerance = "0", penalty_weight = "1e10", every = "1",
-              guard_growth = "100", rho = "0", gamma = "1", delay = "2", estimate = "100",
-              window = "5", threads = "1", newton_iterations = "20", newton_tolerance = "1e-10",
-              save_every = "0", self_collision;
+              iterations = text(c.iterations), tolerance = text(c.tolerance),
+              penalty_weight = text(c.penalty_weight), every = "1", guard_growth = "100",
+              rho = text(c.chebyshev_rho), gamma = text(c.chebyshev_gamma),
+              delay = text(c.chebyshev_delay), estimate = text(c.chebyshev_estimate),
+              window = text(c.anderson_window), threads = text(c.threads),
+              newton_iterations = text(c.newton_iterations),
+              newton_tolerance = text(c.newton_tolerance), save_every = "0", self_collision;
   std::vector<std::string> force{"0", "0", "0"}, gravity{"0", "-9.8", "0"};
 
   CLI::App app{
@@ -172,7 +178,7 @@ int main(int argc, char** argv) {
                                "decrease is <= this (0: never)")
                     ->capture_default_str());
   fms.push_back(app.add_option("--pins", c.pins, "fast-mass-spring: how pinned points are held")
-                    ->check(CLI::IsMember({"exact", "penalty"}))
+                    ->check(CLI::IsMember(massspring::option_names<massspring::PinMode>()))
                     ->capture_default_str());
   fms.push_back(app.add_option("--penalty-weight", penalty_weight,
                                "fast-mass-spring: penalty weight w for --pins penalty [N/m]")
@@ -181,7 +187,7 @@ int main(int argc, char** argv) {
       app.add_option("--acceleration", c.acceleration,
                      "fast-mass-spring: none, chebyshev (Wang 2015) or anderson (Peng et al. "
                      "2018)")
-          ->check(CLI::IsMember({"none", "chebyshev", "anderson"}))
+          ->check(CLI::IsMember(massspring::option_names<massspring::Acceleration>()))
           ->capture_default_str());
   chebyshev.push_back(
       app.add_option("--chebyshev-rho", rho,
@@ -198,9 +204,10 @@ int main(int argc, char** argv) {
   chebyshev.push_back(app.add_option("--chebyshev-estimate-iterations", estimate,
                                      "chebyshev: trial iterations to estimate rho, >= 4")
                           ->capture_default_str());
-  anderson.push_back(
-      app.add_option("--anderson-window", window, "anderson: past iterates in the fit, 1 to 16")
-          ->capture_default_str());
+  anderson.push_back(app.add_option("--anderson-window", window,
+                                    "anderson: past iterates in the fit, 1 to " +
+                                        std::to_string(massspring::kMaxAndersonWindow))
+                         ->capture_default_str());
   fms.push_back(app.add_option("--threads", threads,
                                "fast-mass-spring: threads for the substitutions (sparse storage, "
                                "OpenMP), 1 to 256; the same result bit for bit")
@@ -208,12 +215,12 @@ int main(int argc, char** argv) {
   fms.push_back(app.add_option("--ordering", c.ordering,
                                "fast-mass-spring: fill-reducing order of the factor: auto (the "
                                "sparser of the other two), solver (AMD), nested-dissection")
-                    ->check(CLI::IsMember({"auto", "solver", "nested-dissection"}))
+                    ->check(CLI::IsMember(massspring::option_names<massspring::FillOrdering>()))
                     ->capture_default_str());
   fms.push_back(app.add_option("--initial-guess", c.initial_guess,
                                "fast-mass-spring: where iterations start: current "
                                "(X^t) or inertial (X^t + dt V^t)")
-                    ->check(CLI::IsMember({"current", "inertial"}))
+                    ->check(CLI::IsMember(massspring::option_names<massspring::InitialGuess>()))
                     ->capture_default_str());
   be.push_back(app.add_option("--newton-iterations", newton_iterations,
                               "backward-euler: most Newton iterations per step")
@@ -360,7 +367,8 @@ int main(int argc, char** argv) {
     c.chebyshev_delay = int(parse_integer("--chebyshev-delay", delay, 1, 1000000));
     c.chebyshev_estimate =
         int(parse_integer("--chebyshev-estimate-iterations", estimate, 4, 1000000));
-    c.anderson_window = int(parse_integer("--anderson-window", window, 1, 16));
+    c.anderson_window =
+        int(parse_integer("--anderson-window", window, 1, massspring::kMaxAndersonWindow));
     c.threads = int(parse_integer("--threads", threads, 1, 256));
     c.newton_iterations = int(parse_integer("--newton-iterations", newton_iterations, 1, 1000000));
     c.newton_tolerance = parse_number("--newton-tolerance", newton_tolerance, Bound::NonNegative);

@@ -16,7 +16,7 @@ void bind_backward_euler(py::module_& m) {
   py::class_<Options>(m, "BackwardEulerOptions", "BackwardEuler's options; read at every step.")
       .def(py::init<>())
       .def_readwrite("mode", &Options::mode, "Linearized (one Newton step) or Newton.")
-      .def_readwrite("max_iterations", &Options::max_iterations, "Newton: most iterations (>= 1).")
+      .def_readwrite("iterations", &Options::iterations, "Newton: most iterations (>= 1).")
       .def_readwrite("tolerance", &Options::tolerance,
                      "Newton: stop when max |dx| <= tolerance (1 + max |x|).")
       .def_readwrite("line_search", &Options::line_search, "Newton: backtracking line search.");

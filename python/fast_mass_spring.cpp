@@ -3,6 +3,10 @@
 // FastMassSpring writes the system's positions and velocities in place, so the views of them stay
 // valid.
 
+#include <massspring/integrators/local_global/option_names.hpp>
+#include <string>
+#include <type_traits>
+
 #include "integrator.hpp"
 
 namespace massspring::python {
@@ -12,23 +16,43 @@ namespace {
 using Solver = FastMassSpring<System>;
 using Options = FastMassSpringOptions<double>;
 
+// The error for an option that was removed: it names the force term that replaces it.
+py::attribute_error removed(const std::string& name) {
+  const char* term = name == "gravity" ? "Gravity" : "ConstantForce";
+  return py::attribute_error("options." + name + " was removed: add massspring." + term +
+                             "(...) to the system with system.add_force, which every integrator "
+                             "honours");
+}
+
 }  // namespace
 
 void bind_fast_mass_spring(py::module_& m) {
-  py::enum_<PinMode>(m, "PinMode", "How FastMassSpring holds pinned points.")
-      .value("Exact", PinMode::Exact)
-      .value("Penalty", PinMode::Penalty);
-  py::enum_<InitialGuess>(m, "InitialGuess", "Where the iterations start.")
-      .value("Current", InitialGuess::Current)
-      .value("Inertial", InitialGuess::Inertial);
-  py::enum_<Acceleration>(m, "Acceleration")
+  // Each enumeration also reads and writes the names of option_names.hpp, the command line's:
+  // Acceleration.from_name("chebyshev"), Acceleration.Chebyshev.text == "chebyshev".
+  const auto names = [](auto& e) {
+    using Enum = typename std::decay_t<decltype(e)>::type;
+    e.def_static("from_name", &parse_option<Enum>, py::arg("name"),
+                 "The value a name spells (massspring.Error for an unknown name).")
+        .def_property_readonly(
+            "text", [](Enum v) { return std::string(option_name(v)); }, "The value's name.");
+  };
+  py::enum_<PinMode> pins(m, "PinMode", "How FastMassSpring holds pinned points.");
+  pins.value("Exact", PinMode::Exact).value("Penalty", PinMode::Penalty);
+  names(pins);
+  py::enum_<InitialGuess> guess(m, "InitialGuess", "Where the iterations start.");
+  guess.value("Current", InitialGuess::Current).value("Inertial", InitialGuess::Inertial);
+  names(guess);
+  py::enum_<Acceleration> acceleration(m, "Acceleration");
+  acceleration
       .value("None_", Acceleration::None)  // None is a Python keyword
       .value("Chebyshev", Acceleration::Chebyshev)
       .value("Anderson", Acceleration::Anderson);
-  py::enum_<FillOrdering>(m, "FillOrdering")
-      .value("Auto", FillOrdering::Auto)
+  names(acceleration);
+  py::enum_<FillOrdering> ordering(m, "FillOrdering");
+  ordering.value("Auto", FillOrdering::Auto)
       .value("Solver", FillOrdering::Solver)
       .value("NestedDissection", FillOrdering::NestedDissection);
+  names(ordering);
 
   py::class_<Options> o(m, "FastMassSpringOptions",
                         "FastMassSpring's options (integrators/local_global/options.hpp); read at "
@@ -38,8 +62,8 @@ void bind_fast_mass_spring(py::module_& m) {
           "iterations", [](const Options& x) { return x.iterations; },
           [](Options& x, int n) {
             if (n < 1)  // the message step() would give, at the assignment
-              throw Error(detail::message("FastMassSpring: options.iterations must be >= 1, got ",
-                                          n));
+              throw Error(
+                  detail::message("FastMassSpring: options.iterations must be >= 1, got ", n));
             x.iterations = n;
           },
           "Most iterations per step (>= 1; checked when set).")
@@ -49,24 +73,15 @@ void bind_fast_mass_spring(py::module_& m) {
       .def_readwrite("penalty_weight", &Options::penalty_weight, "w for PinMode.Penalty [N/m].")
       .def_readwrite("contact_weight", &Options::contact_weight,
                      "Weight of the collider projection inside the iterations (0: off).")
+      // Removed options: assigning one names what replaces it (a force term on the system).
       .def_property(
-          "external_force", [](const Options& x) { return copy_array(x.external_force, true); },
-          [](Options& x, const py::handle& f) {
-            x.external_force = vector3(f, "options.external_force");
-          },
-          "A force [N] on every point (a copy: assign the whole vector).")
+          "external_force", [](const Options&) -> py::object { throw removed("external_force"); },
+          [](Options&, const py::handle&) { throw removed("external_force"); },
+          "Removed: add massspring.ConstantForce to the system.")
       .def_property(
-          "gravity", [](const Options& x) { return copy_array(x.gravity, true); },
-          [](Options& x, const py::handle& g) {
-            x.gravity = vector3(g, "options.gravity");
-            if (!x.gravity.isZero())
-              py::module_::import("warnings")
-                  .attr("warn")("options.gravity is deprecated: add massspring.Gravity to the "
-                                "system instead (with both, gravity acts twice)",
-                                py::module_::import("builtins").attr("DeprecationWarning"), 2);
-          },
-          "Deprecated: add a Gravity term to the system. An acceleration [m/s^2] of every point, "
-          "on top of the system's terms (a copy: assign the whole vector).")
+          "gravity", [](const Options&) -> py::object { throw removed("gravity"); },
+          [](Options&, const py::handle&) { throw removed("gravity"); },
+          "Removed: add massspring.Gravity to the system.")
       .def_readwrite("initial_guess", &Options::initial_guess)
       .def_readwrite("acceleration", &Options::acceleration)
       .def_readwrite("chebyshev_rho", &Options::chebyshev_rho, "In [0, 1); 0: estimated.")
@@ -81,7 +96,7 @@ void bind_fast_mass_spring(py::module_& m) {
 
   py::class_<Solver> c(m, "FastMassSpring",
                        "Local-global implicit Euler for springs (Liu et al. 2013): "
-                       "precompute(system, dt) factorises once, step(system) per frame.");
+                       "precompute(system, dt) factorizes once, step(system) per frame.");
   c.def(py::init<>())
       .def(py::init<const Options&>(), py::arg("options"))
       .def_readwrite("options", &Solver::options,

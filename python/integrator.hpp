@@ -52,7 +52,7 @@ void bind_integrator_calls(py::module_& m, Class& c, Step step) {
          integrator.precompute(system, dt);
        },
        py::arg("system"), py::arg("dt"),
-       "Sets the time step dt [s] and prepares for the system (factorises where the method "
+       "Sets the time step dt [s] and prepares for the system (factorizes where the method "
        "does). Call it again after the number of points changes. The GIL is released.")
       .def(
           "step",

@@ -68,10 +68,9 @@ void bind_step_report(py::module_& m) {
       .def_readonly("contact_resolved", &StepReport::contact_resolved,
                     "False when surface contact could not remove every crossing (nothing changed).")
       .def("ok", &StepReport::ok,
-           "finite, not blown up, the factorisation succeeded and the contact was resolved")
+           "finite, not blown up, the factorization succeeded and the contact was resolved")
       .def("__repr__", [](const StepReport& r) {
-        return detail::message("StepReport(iterations=", r.iterations,
-                               ", convergence=",
+        return detail::message("StepReport(iterations=", r.iterations, ", convergence=",
                                r.convergence == Convergence::NotTested   ? "NotTested"
                                : r.convergence == Convergence::Converged ? "Converged"
                                                                          : "NotConverged",

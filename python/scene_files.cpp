@@ -1,7 +1,7 @@
 // Scene files (io/load_scene.hpp, io/obj.hpp, io/state_scene.hpp): load_scene(path) for JSON+OBJ,
 // FOSSSim XML and saved states; load_scene_file(path) with what the file holds besides the system
 // (faces and edges to draw, an XML scene's time step, duration and integrator); write_obj and
-// write_scene. Errors (a missing file, a bad key, a line of an OBJ) raise massspring.Error with
+// write_state. Errors (a missing file, a bad key, a line of an OBJ) raise massspring.Error with
 // the library's message, which names the file and the item.
 
 #include <pybind11/stl/filesystem.h>
@@ -54,7 +54,7 @@ void bind_scene_files(py::module_& m) {
       .def_property_readonly(
           "edges", [](const Loaded& s) { return copy_edges(s.edges); }, "(k, 2) segments to draw.")
       .def_readonly("files", &Loaded::files, "Every file read.")
-      .def_readonly("state", &Loaded::state, "True for a state saved by write_scene.")
+      .def_readonly("state", &Loaded::state, "True for a state saved by write_state.")
       .def_readonly("dt", &Loaded::dt,
                     "A JSON+OBJ scene's \"dt\": the step it is meant to run at [s], or None.")
       .def_property_readonly(
@@ -86,13 +86,13 @@ void bind_scene_files(py::module_& m) {
       py::arg("path"), py::arg("positions"), py::arg("faces") = py::none(),
       py::arg("edges") = py::none(), "Writes an OBJ: vertices, faces (polygons) and edges.");
   m.def(
-      "write_scene",
+      "write_state",
       [](const System& system, const std::filesystem::path& path, const py::handle& faces,
          const py::handle& edges) {
         io::StateSceneExtras extras;
         extras.faces = faces_from(faces);
         if (!edges.is_none()) extras.edges = index_matrix(edges, "edges", 2);
-        io::write_scene(system, path, extras);
+        io::write_state(system, path, extras);
       },
       py::arg("system"), py::arg("path"), py::arg("faces") = py::none(),
       py::arg("edges") = py::none(),

@@ -86,7 +86,7 @@ Invalid input raises massspring.Error and builds nothing.)doc");
       [](System& s, const py::handle& x) {
         idle(s, "set_masses").set_masses(real_vector(x, "masses", s.num_points(), true));
       },
-      "(n,) masses [kg] (a copy); assigning refactorises at the next implicit step.");
+      "(n,) masses [kg] (a copy); assigning refactorizes at the next implicit step.");
   c.def_property(
       "stiffness", [](const System& s) { return copy_array(s.stiffness(), true); },
       [](System& s, const py::handle& x) {

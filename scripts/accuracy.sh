@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates everything issue 4 put in docs/: run time against error (docs/benchmarks.md,
+# Regenerates the accuracy studies in docs/: run time against error (docs/benchmarks.md,
 # docs/images/pareto_*.png; scripts/pareto.sh) and the stability stress suite (docs/stability.md,
 # docs/images/stability_*.png; scripts/stability.sh). About 17 minutes on 2 cores (6 + 11), plus
 # 15 s the first time for the RK4 references cached in out/reference/.

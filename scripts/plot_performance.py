@@ -87,7 +87,7 @@ def fmt(x, spec):
 
 
 def table(header, rows):
-    align = ["---" if h.startswith(("scene", "method", "factorisation")) else "---:"
+    align = ["---" if h.startswith(("scene", "method", "factorization")) else "---:"
              for h in header]
     lines = ["| " + " | ".join(header) + " |", "|" + "|".join(align) + "|"]
     lines += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
@@ -251,7 +251,7 @@ def factorization_block(perf):
                 continue
             rows.append([s, name, fmt(r.get("nnz_L"), ".0f"), fmt(r["cpu_ms"], ".1f"),
                          fmt(r.get("solve_ms"), ".3f")])
-    return table(["scene", "factorisation", "nnz(L)", "factorise ms", "one n x 3 solve ms"],
+    return table(["scene", "factorization", "nnz(L)", "factorize ms", "one n x 3 solve ms"],
                  rows) + when(runs, "bench_factorization")
 
 

@@ -333,7 +333,7 @@ def summary_checks(grid, bound, meta):
         if m == "BackwardEuler-Newton":
             unc = [r for r in mine if int(r["unconverged_steps"]) > 0]
             if unc:
-                line += (". Steps that stopped at max_iterations: " + ", ".join(
+                line += (". Steps that stopped at iterations: " + ", ".join(
                     f"{r['scene']} k={fmt_k(fnum(r['k']))} dt {r['dt_label']}: "
                     f"{r['unconverged_steps']} of {r['steps_done']}" for r in unc))
         w(line + ".")

@@ -1,4 +1,4 @@
-// scripts/compile_time.sh: the yardstick, Eigen's own SimplicialLLT factorising a sparse matrix
+// scripts/compile_time.sh: the yardstick, Eigen's own SimplicialLLT factorizing a sparse matrix
 // built from triplets and solving for an n x 3 right-hand side.
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>

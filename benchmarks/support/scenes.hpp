@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/scene/cloth.hpp>
 #include <massspring/scene/make_system.hpp>
@@ -63,6 +64,19 @@ struct Scene {
   std::shared_ptr<const FloatSystem> single;
 };
 
+/// @brief `system` with the scene's force added as a term: Gravity m g when `gravity`, else the
+/// assignment's ConstantForce of (0, -9.8, 0) N on every point.
+template <class System>
+System with_force(System system, bool gravity) {
+  using Scalar = typename System::Scalar;
+  const Vector3<Scalar> down(0, Scalar(-9.8), 0);
+  if (gravity)
+    system.add_force(Gravity<Scalar>(down));
+  else
+    system.add_force(ConstantForce<Scalar>(down));
+  return system;
+}
+
 /// @brief What to build besides the double, Sparse system.
 struct Build {
   bool dense = false;
@@ -79,11 +93,14 @@ inline Scene cloth_scene(int n, Build build = {}) {
   const auto description = make_cloth(o);
   Scene s;
   s.name = "cloth" + std::to_string(n);
-  s.sparse = std::make_shared<const SparseSystem>(make_system<SparseSystem>(description));
+  s.sparse = std::make_shared<const SparseSystem>(
+      with_force(make_system<SparseSystem>(description), s.gravity));
   if (build.dense)
-    s.dense = std::make_shared<const DenseSystem>(make_system<DenseSystem>(description));
+    s.dense = std::make_shared<const DenseSystem>(
+        with_force(make_system<DenseSystem>(description), s.gravity));
   if (build.single)
-    s.single = std::make_shared<const FloatSystem>(make_system<FloatSystem>(description));
+    s.single = std::make_shared<const FloatSystem>(
+        with_force(make_system<FloatSystem>(description), s.gravity));
   return s;
 }
 
@@ -93,17 +110,18 @@ inline Scene curtain_scene(Build build = {}) {
   Scene s;
   s.name = "curtain";
   s.gravity = true;
-  s.sparse = std::make_shared<const SparseSystem>(make_system<SparseSystem>(description));
+  s.sparse = std::make_shared<const SparseSystem>(
+      with_force(make_system<SparseSystem>(description), s.gravity));
   if (build.single)
-    s.single = std::make_shared<const FloatSystem>(make_system<FloatSystem>(description));
+    s.single = std::make_shared<const FloatSystem>(
+        with_force(make_system<FloatSystem>(description), s.gravity));
   return s;
 }
 
 /// @brief The assignment's scene `name` (flag, skirt), or nothing (with a note on stderr) when
 /// its file or massspring::io is missing.
 inline std::vector<Scene> jacobson_scene(const std::string& name, Build build = {}) {
-  const std::filesystem::path file =
-      shared_dir() / "scenes" / "jacobson" / (name + ".json");
+  const std::filesystem::path file = shared_dir() / "scenes" / "jacobson" / (name + ".json");
   if (!std::filesystem::exists(file)) {
     std::fprintf(stderr, "note: %s not found; the %s benchmarks are not registered\n",
                  file.string().c_str(), name.c_str());
@@ -113,9 +131,11 @@ inline std::vector<Scene> jacobson_scene(const std::string& name, Build build = 
   try {
     Scene s;
     s.name = name;
-    s.sparse = std::make_shared<const SparseSystem>(io::load_scene<SparseSystem>(file));
+    s.sparse = std::make_shared<const SparseSystem>(
+        with_force(io::load_scene<SparseSystem>(file), s.gravity));
     if (build.single)
-      s.single = std::make_shared<const FloatSystem>(io::load_scene<FloatSystem>(file));
+      s.single = std::make_shared<const FloatSystem>(
+          with_force(io::load_scene<FloatSystem>(file), s.gravity));
     return {std::move(s)};
   } catch (const std::exception& e) {
     std::fprintf(stderr, "WARNING: loading %s failed (%s); its benchmarks are not registered\n",
@@ -139,14 +159,14 @@ inline std::vector<Scene> standard_scenes(Build build = {}) {
 }
 
 /// @brief FastMassSpring's options for `scene`, set up as the seed: kIterations iterations from
-/// the current positions, penalty pins of weight kPenaltyWeight, the scene's force.
+/// the current positions, penalty pins of weight kPenaltyWeight (the scene's systems carry its
+/// force).
 template <class Scalar>
-FastMassSpringOptions<Scalar> options_for(const Scene& scene) {
+FastMassSpringOptions<Scalar> options_for(const Scene&) {
   FastMassSpringOptions<Scalar> o;
   o.iterations = kIterations;
   o.pins = PinMode::Penalty;
   o.penalty_weight = Scalar(kPenaltyWeight);
-  (scene.gravity ? o.gravity : o.external_force) = Vector3<Scalar>(0, Scalar(-9.8), 0);
   o.initial_guess = InitialGuess::Current;
   return o;
 }

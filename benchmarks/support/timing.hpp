@@ -52,7 +52,7 @@ bool precompute_or_skip(benchmark::State& state, Solver& solver, const System& s
 /// @brief Leaves the options as options_for() sets them.
 inline constexpr auto kSeedLike = [](auto&) {};
 
-/// @brief FastMassSpring::precompute (build Q, order, factorise), one per benchmark iteration.
+/// @brief FastMassSpring::precompute (build Q, order, factorize), one per benchmark iteration.
 template <class System, class Adjust = decltype(kSeedLike)>
 void bm_precompute(benchmark::State& state, const Scene& scene, const System& proto,
                    Adjust adjust = kSeedLike) {
@@ -120,7 +120,7 @@ void bm_floor(benchmark::State& state, const Scene& scene, const System& proto, 
   typename System::Traits::Cholesky cholesky;
   if constexpr (std::is_same_v<typename System::Storage, Sparse>) {
     if (options.threads > 1) cholesky.set_threads(options.threads);
-    cholesky.set_avx2(options.simd);
+    cholesky.set_simd(options.simd);
   }
   if (!precompute_or_skip(state, solver, proto)) return;
   bool ok = false;

@@ -3,6 +3,8 @@
 // besides them (the loaded scene).
 
 #include <filesystem>
+#include <massspring/integrators/backward_euler.hpp>
+#include <massspring/integrators/local_global/option_names.hpp>
 #include <massspring/io.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -12,6 +14,10 @@
 namespace simulate {
 
 namespace fs = std::filesystem;
+
+/// The library's default options, which the command line's defaults are.
+inline const massspring::FastMassSpringOptions<double> kFastMassSpring{};
+inline const massspring::BackwardEulerOptions<double> kBackwardEuler{};
 
 /// Which option sets the length of the run.
 enum class Length { Default, Steps, Frames, Duration };
@@ -31,25 +37,25 @@ struct Config {
   std::string integrator = "fast-mass-spring";
   bool integrator_given = false;
   double shrink = 0;  // rest lengths l0(t) = l0(0) exp(-shrink t)
-  // FastMassSpringOptions
-  int iterations = 50;
-  double tolerance = 0;
-  std::string pins = "exact";
-  double penalty_weight = 1e10;
-  std::string acceleration = "none";
-  double chebyshev_rho = 0;
+  // FastMassSpringOptions, defaults the library's
+  int iterations = kFastMassSpring.iterations;
+  double tolerance = kFastMassSpring.tolerance;
+  std::string pins = massspring::option_name(kFastMassSpring.pins);
+  double penalty_weight = kFastMassSpring.penalty_weight;
+  std::string acceleration = massspring::option_name(kFastMassSpring.acceleration);
+  double chebyshev_rho = kFastMassSpring.chebyshev_rho;
   bool rho_given = false;
-  double chebyshev_gamma = 1;
-  int chebyshev_delay = 2;
-  int chebyshev_estimate = 100;
-  int anderson_window = 5;
-  int threads = 1;
-  std::string ordering = "auto";
-  std::string initial_guess = "current";
-  // BackwardEulerOptions
-  int newton_iterations = 20;
-  double newton_tolerance = 1e-10;
-  std::string line_search = "on";
+  double chebyshev_gamma = kFastMassSpring.chebyshev_gamma;
+  int chebyshev_delay = kFastMassSpring.chebyshev_delay;
+  int chebyshev_estimate = kFastMassSpring.chebyshev_estimate_iterations;
+  int anderson_window = kFastMassSpring.anderson_window;
+  int threads = kFastMassSpring.threads;
+  std::string ordering = massspring::option_name(kFastMassSpring.ordering);
+  std::string initial_guess = massspring::option_name(kFastMassSpring.initial_guess);
+  // BackwardEulerOptions, defaults the library's
+  int newton_iterations = kBackwardEuler.iterations;
+  double newton_tolerance = kBackwardEuler.tolerance;
+  std::string line_search = kBackwardEuler.line_search ? "on" : "off";
   // options given that belong to one integrator or acceleration
   std::vector<std::string> given_fast_mass_spring, given_chebyshev, given_anderson,
       given_backward_euler;

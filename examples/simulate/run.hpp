@@ -191,11 +191,9 @@ void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System
   auto& o = solver.options;
   o.iterations = c.iterations;
   o.tolerance = Scalar(c.tolerance);
-  o.pins = c.pins == "penalty" ? massspring::PinMode::Penalty : massspring::PinMode::Exact;
+  o.pins = massspring::parse_option<massspring::PinMode>(c.pins);
   o.penalty_weight = Scalar(c.penalty_weight);
-  o.acceleration = c.acceleration == "chebyshev"  ? massspring::Acceleration::Chebyshev
-                   : c.acceleration == "anderson" ? massspring::Acceleration::Anderson
-                                                  : massspring::Acceleration::None;
+  o.acceleration = massspring::parse_option<massspring::Acceleration>(c.acceleration);
   // A resumed run uses the rho its first run estimated: estimating again, from another state,
   // would give another rho and another trajectory.
   o.chebyshev_rho = Scalar(!c.rho_given && p.saved_rho ? *p.saved_rho : c.chebyshev_rho);
@@ -204,11 +202,8 @@ void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System
   o.chebyshev_estimate_iterations = c.chebyshev_estimate;
   o.anderson_window = c.anderson_window;
   o.threads = c.threads;
-  o.ordering = c.ordering == "solver"              ? massspring::FillOrdering::Solver
-               : c.ordering == "nested-dissection" ? massspring::FillOrdering::NestedDissection
-                                                   : massspring::FillOrdering::Auto;
-  o.initial_guess = c.initial_guess == "inertial" ? massspring::InitialGuess::Inertial
-                                                  : massspring::InitialGuess::Current;
+  o.ordering = massspring::parse_option<massspring::FillOrdering>(c.ordering);
+  o.initial_guess = massspring::parse_option<massspring::InitialGuess>(c.initial_guess);
   if (std::is_same_v<Scalar, float> && o.pins == massspring::PinMode::Penalty)
     throw Error(
         massspring::detail::message("--pins penalty with --precision float: w = ", c.penalty_weight,
@@ -218,7 +213,7 @@ void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System
 // (with_integrator() has set options.mode from the kind.)
 template <class System>
 void configure(const Config& c, const Plan&, massspring::BackwardEuler<System>& solver) {
-  solver.options.max_iterations = c.newton_iterations;
+  solver.options.iterations = c.newton_iterations;
   solver.options.tolerance = typename System::Scalar(c.newton_tolerance);
   solver.options.line_search = c.line_search == "on";
 }
@@ -280,7 +275,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
                           {"integrator", p.integrator},
                           {"scene", s.name}};
     // The rho this run used, so that a resumed run uses it too. The solver estimates it once per
-    // factorisation; an estimate of 0 (no acceleration: the trial iterations gave no rate in
+    // factorization; an estimate of 0 (no acceleration: the trial iterations gave no rate in
     // (0, 1)) is saved as the smallest positive float, which accelerates nothing either (omega =
     // 2 / (2 - rho^2) is exactly 1, in float and double) but is not "estimate again".
     if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
@@ -293,7 +288,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
       run["rest_lengths_at_frame_0"] = rest_at_0;
     }
     extras.run = std::move(run);
-    massspring::io::write_scene(system, c.save_state, extras);
+    massspring::io::write_state(system, c.save_state, extras);
   };
 
   long long last_written = -1;

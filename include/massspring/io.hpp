@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief Scene files: the assignment's JSON+OBJ scenes, FOSSSim's XML scenes and OBJ frames.
+/// @brief Scene files: the JSON+OBJ scenes, FOSSSim's XML scenes and OBJ frames.
 /// Needs nlohmann_json and pugixml (CMake target massspring::io). The core
 /// (massspring/massspring.hpp) never includes this.
 

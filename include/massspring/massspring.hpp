@@ -19,6 +19,7 @@
 #include "massspring/integrators/fast_mass_spring.hpp"
 #include "massspring/integrators/forward_euler.hpp"
 #include "massspring/integrators/integrator_kind.hpp"
+#include "massspring/integrators/local_global/option_names.hpp"
 #include "massspring/integrators/rk4.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/integrators/symplectic_euler.hpp"

@@ -27,7 +27,7 @@ namespace massspring::test {
 ///
 /// precompute(system, dt):
 ///   A = system.incidence() (m x n), M = system.mass_matrix(), C = system.pin_selector() (p x n),
-///   K = diag(stiffness), Q = A^T K A + M / dt^2 + w C^T C, factorised by SimplicialLLT;
+///   K = diag(stiffness), Q = A^T K A + M / dt^2 + w C^T C, factorized by SimplicialLLT;
 ///   U = system.positions(), U_prev = U - dt V (the system's velocities).
 /// step(), one frame:
 ///   y = M (2 U - U_prev) / dt^2 + F_ext + w C^T C U_rest;  X = U;
@@ -63,9 +63,9 @@ class SeedFastMassSpring {
   SeedFastMassSpring() = default;
   explicit SeedFastMassSpring(const Options& opts) : options(opts) {}
 
-  /// @brief Builds and factorises Q and takes the system's state (positions U, velocities V) as
+  /// @brief Builds and factorizes Q and takes the system's state (positions U, velocities V) as
   /// the solver's own: U_prev = U - dt V. Throws std::invalid_argument on bad input,
-  /// std::runtime_error when Q cannot be factorised.
+  /// std::runtime_error when Q cannot be factorized.
   /// @param[in] system the model (read now, not kept)
   /// @param[in] dt     time step [s], > 0
   void precompute(const System& system, double dt) {
@@ -139,7 +139,7 @@ class SeedFastMassSpring {
   [[nodiscard]] Eigen::Index factor_nonzeros() const {
     return llt_.matrixL().nestedExpression().nonZeros();
   }
-  /// @brief The factorisation of Q (Eigen's SimplicialLLT, its default AMD ordering).
+  /// @brief The factorization of Q (Eigen's SimplicialLLT, its default AMD ordering).
   [[nodiscard]] const Factorization& factorization() const { return llt_; }
 
  private:

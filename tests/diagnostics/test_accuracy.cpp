@@ -152,7 +152,7 @@ TEST_CASE("accuracy: a converged BackwardEuler step minimises incremental_potent
     const double h = 1.0 / 30;
     massspring::BackwardEulerOptions<double> o;
     o.tolerance = 1e-13;
-    o.max_iterations = 50;
+    o.iterations = 50;
     massspring::BackwardEuler<SystemS> be(o);
     be.precompute(s, h);
     const auto r = be.step(s);

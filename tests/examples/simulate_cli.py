@@ -609,7 +609,7 @@ def resume(simulate, source, work):
         (["--generate", "chain:12"], ["--integrator", "backward-euler"]),
         (["--generate", "chain:12"], ["--shrink", "0.5", "--precision", "float"]),
         (["chain.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),
-        # colliders of every kind, moving, with every integrator (issue 22)
+        # colliders of every kind, moving, with every integrator
         (["contact.json"], []),
         (["contact.json"], ["--acceleration", "chebyshev", "--iterations", "10"]),
         (["contact.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),

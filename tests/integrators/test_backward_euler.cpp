@@ -16,8 +16,12 @@
 
 #include "support/alloc_counter.hpp"
 #include "support/small_systems.hpp"
+#include "support/uniform_forces.hpp"
 
 namespace {
+
+using massspring::test::add_gravity;
+using massspring::test::add_uniform_force;
 
 using massspring::BackwardEuler;
 using massspring::BackwardEulerMode;
@@ -87,7 +91,7 @@ TEST_CASE("Newton backward Euler and local-global converged agree on the same st
     const double h = 1.0 / 30;
     massspring::FastMassSpring<SystemS> lg;
     lg.options.pins = pins;
-    lg.options.gravity = Eigen::Vector3d(0, -9.8, 0);
+    add_gravity(a, Eigen::Vector3d(0, -9.8, 0));
     lg.options.iterations = 20000;  // linear convergence: run it out to rounding
     lg.options.tolerance = 0;
     lg.options.initial_guess = massspring::InitialGuess::Inertial;
@@ -193,10 +197,10 @@ TEST_CASE("BackwardEuler: refuses bad input; failure leaves the state") {
   CHECK_THROWS_WITH_AS(be.precompute(s, -1.0), "BackwardEuler: dt must be finite and > 0, got -1",
                        massspring::Error);
   be.precompute(s, 0.1);
-  be.options.max_iterations = 0;
-  CHECK_THROWS_WITH_AS(be.step(s), "BackwardEuler: max_iterations must be >= 1, got 0",
+  be.options.iterations = 0;
+  CHECK_THROWS_WITH_AS(be.step(s), "BackwardEuler: iterations must be >= 1, got 0",
                        massspring::Error);
-  be.options.max_iterations = 5;
+  be.options.iterations = 5;
   Pts v = Pts::Zero(2, 3);
   v(1, 0) = 1e308;
   s.set_velocities(v);
@@ -208,8 +212,8 @@ TEST_CASE("BackwardEuler: refuses bad input; failure leaves the state") {
 }
 
 TEST_CASE("BackwardEuler with Dense storage allocates nothing in step()") {
-  // Sparse storage allocates inside Eigen's numeric factorisation (a permuted copy of A per
-  // solve); Dense assembles and factorises into storage sized by precompute().
+  // Sparse storage allocates inside Eigen's numeric factorization (a permuted copy of A per
+  // solve); Dense assembles and factorizes into storage sized by precompute().
   for (auto mode : {BackwardEulerMode::Linearized, BackwardEulerMode::Newton}) {
     auto s = massspring::test::perturbed_cloth<SystemD>();
     s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
@@ -223,7 +227,8 @@ TEST_CASE("BackwardEuler with Dense storage allocates nothing in step()") {
   }
 }
 
-TEST_CASE("StepReport::convergence: NotTested without a tolerance, Converged or NotConverged with") {
+TEST_CASE(
+    "StepReport::convergence: NotTested without a tolerance, Converged or NotConverged with") {
   using massspring::Convergence;
   massspring::ClothOptions o;
   o.columns = 8;
@@ -273,7 +278,7 @@ TEST_CASE("StepReport::convergence: NotTested without a tolerance, Converged or 
     BackwardEuler<SystemS> capped;
     capped.options.mode = BackwardEulerMode::Newton;
     capped.options.tolerance = 0;
-    capped.options.max_iterations = 1;
+    capped.options.iterations = 1;
     CHECK(first_step(capped).convergence == Convergence::NotConverged);
     BackwardEuler<SystemS> linearized;
     linearized.options.mode = BackwardEulerMode::Linearized;

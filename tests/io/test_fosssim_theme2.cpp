@@ -33,10 +33,10 @@ using massspring::io::FosssimScene;
 using massspring::io::read_fosssim_scene;
 using System = massspring::MassSpringSystem<double, massspring::Sparse>;
 
-fs::path fosssim_dir() { return massspring::test::shared_dir() / "scenes" / "fosssim"; }
-bool have_fosssim() { return fs::is_directory(fosssim_dir() / "t2m1"); }
+fs::path theme2_root() { return massspring::test::shared_dir() / "scenes" / "fosssim"; }
+bool have_theme2() { return fs::is_directory(theme2_root() / "t2m1"); }
 
-std::string trim(const std::string& s) {
+std::string trim_cell(const std::string& s) {
   const auto a = s.find_first_not_of(' ');
   if (a == std::string::npos) return "";
   return s.substr(a, s.find_last_not_of(' ') - a + 1);
@@ -44,7 +44,7 @@ std::string trim(const std::string& s) {
 
 // The rows "| t2m... |" of SOURCE.md's Theme-2 table, as cells.
 std::vector<std::vector<std::string>> theme2_table() {
-  std::ifstream in(fosssim_dir() / "SOURCE.md");
+  std::ifstream in(theme2_root() / "SOURCE.md");
   std::vector<std::vector<std::string>> rows;
   std::string line;
   while (std::getline(in, line)) {
@@ -52,7 +52,7 @@ std::vector<std::vector<std::string>> theme2_table() {
     std::vector<std::string> cells;
     std::stringstream ss(line.substr(1));
     std::string cell;
-    while (std::getline(ss, cell, '|')) cells.push_back(trim(cell));
+    while (std::getline(ss, cell, '|')) cells.push_back(trim_cell(cell));
     rows.push_back(cells);
   }
   return rows;
@@ -112,21 +112,21 @@ bool runs_finite(const fs::path& file, long long steps) {
 
 std::vector<fs::path> runnable_scenes() {
   std::vector<fs::path> files;
-  for (const auto& row : theme2_table()) files.push_back(fosssim_dir() / row[0]);
-  files.push_back(fosssim_dir() / "t1m3" / "VortexExample.xml");
+  for (const auto& row : theme2_table()) files.push_back(theme2_root() / row[0]);
+  files.push_back(theme2_root() / "t1m3" / "VortexExample.xml");
   return files;
 }
 
 }  // namespace
 
 TEST_CASE("fosssim theme 2: every scene loads as SOURCE.md's Theme-2 table lists it" *
-          doctest::skip(!have_fosssim())) {
+          doctest::skip(!have_theme2())) {
   const auto rows = theme2_table();
   REQUIRE(rows.size() == 57);
   for (const auto& c : rows) {
     REQUIRE(c.size() >= 15);
     CAPTURE(c[0]);
-    const FosssimScene s = read_fosssim_scene(fosssim_dir() / c[0]);
+    const FosssimScene s = read_fosssim_scene(theme2_root() / c[0]);
     const FosssimIntegrator expected = c[2] == "explicit-euler" ? FosssimIntegrator::ExplicitEuler
                                        : c[2] == "implicit-euler"
                                            ? FosssimIntegrator::ImplicitEuler
@@ -158,7 +158,7 @@ TEST_CASE("fosssim theme 2: every scene loads as SOURCE.md's Theme-2 table lists
     CHECK(s.contest.has_value() == (c[12] != "-"));
     if (s.contest) CHECK(*s.contest == (c[12] == "contest"));
     // the system carries the response the scene asks for
-    const System sys = massspring::io::load_scene<System>(fosssim_dir() / c[0]);
+    const System sys = massspring::io::load_scene<System>(theme2_root() / c[0]);
     const bool handler = type == "simple" || type == "continuous-time" || hybrid;
     REQUIRE((sys.collision_handler() != nullptr) == handler);
     if (handler) CHECK(std::string(sys.collision_handler()->name()) == type);
@@ -177,12 +177,12 @@ TEST_CASE("fosssim theme 2: every scene loads as SOURCE.md's Theme-2 table lists
 }
 
 TEST_CASE("fosssim theme 2: attributes without a blank and a number with a leading blank" *
-          doctest::skip(!have_fosssim())) {
-  const FosssimScene s = read_fosssim_scene(fosssim_dir() / "t2m2/ImpulsesTests/test06.xml");
+          doctest::skip(!have_theme2())) {
+  const FosssimScene s = read_fosssim_scene(theme2_root() / "t2m2/ImpulsesTests/test06.xml");
   CHECK(s.num_particles() == 10);
   CHECK(s.positions(4, 0) == 0.3467);
   CHECK(s.velocities.row(4).isZero());  // vx="0"vy="0"
-  const FosssimScene t = read_fosssim_scene(fosssim_dir() / "t2m3/TestingScenes/test01.xml");
+  const FosssimScene t = read_fosssim_scene(theme2_root() / "t2m3/TestingScenes/test01.xml");
   CHECK(t.positions.col(0).maxCoeff() >= 1.0);
   // the separation is the course's reading, nothing more: a real error stays an error
   CHECK_THROWS_AS(massspring::io::parse_fosssim_scene("<scene><particle m=\"1\"</scene>", "x.xml"),
@@ -229,7 +229,7 @@ TEST_CASE("fosssim theme 2: a scene with every Theme-2 element round-trips exact
 }
 
 TEST_CASE("fosssim theme 2: the 57 scenes and VortexExample run finite (first 50 steps)" *
-          doctest::skip(!have_fosssim())) {
+          doctest::skip(!have_theme2())) {
   for (const fs::path& file : runnable_scenes()) {
     CAPTURE(file.string());
     CHECK(runs_finite(file, 50));
@@ -238,7 +238,7 @@ TEST_CASE("fosssim theme 2: the 57 scenes and VortexExample run finite (first 50
 
 TEST_SUITE("soak" * doctest::skip()) {
   TEST_CASE("soak: FosssimTheme2, the 57 scenes and VortexExample run finite, whole durations" *
-            doctest::skip(!have_fosssim())) {
+            doctest::skip(!have_theme2())) {
     for (const fs::path& file : runnable_scenes()) {
       CAPTURE(file.string());
       CHECK(runs_finite(file, -1));

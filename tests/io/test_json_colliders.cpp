@@ -116,8 +116,8 @@ void check_resume(const massspring::SceneDescription<double>& scene, const TempD
   solver.precompute(whole, dt);
   for (int n = 0; n < 30; ++n) REQUIRE(solver.step(whole).ok());
   const fs::path state = dir / "state.json";
-  massspring::io::write_scene(whole, state);
-  System resumed = massspring::io::read_state_scene<System>(state).system;
+  massspring::io::write_state(whole, state);
+  System resumed = massspring::io::read_state<System>(state).system;
   REQUIRE(resumed.colliders().size() == 5);
   for (int i = 0; i < 5; ++i) {
     CAPTURE(i);

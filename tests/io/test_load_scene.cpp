@@ -12,8 +12,12 @@
 #include "io/test_files.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "support/paths.hpp"
+#include "support/uniform_forces.hpp"
 
 namespace {
+
+using massspring::test::add_gravity;
+using massspring::test::add_uniform_force;
 
 using massspring::Dense;
 using massspring::Error;
@@ -173,7 +177,7 @@ TEST_CASE("the assignment's flag and skirt run 100 frames with its settings, fin
     auto system = load_scene<SparseSystem>(massspring::test::jacobson_dir() / file);
     massspring::FastMassSpring<SparseSystem> solver;
     solver.options.pins = massspring::PinMode::Penalty;
-    solver.options.external_force = {0, -9.8, 0};
+    add_uniform_force(system, {0, -9.8, 0});
     solver.precompute(system, 1.0 / 30);
     const double start_y = system.positions().col(1).mean();
     int first_bad = -1;

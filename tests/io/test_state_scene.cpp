@@ -1,4 +1,4 @@
-// io/state_scene.hpp: write_scene() then read_state_scene() (and load_scene()) gives a system equal
+// io/state_scene.hpp: write_state() then read_state() (and load_scene()) gives a system equal
 // in every field, bit for bit, in double and float; one FastMassSpring step from each gives the
 // same state; what cannot be written or read is refused, naming the file.
 #include <doctest/doctest.h>
@@ -143,10 +143,10 @@ void round_trip() {
   extras.edges = massspring::Edges(1, 2);
   extras.edges << 3, 4;
   extras.run = {{"frame", 12}, {"integrator", "fast-mass-spring"}};
-  massspring::io::write_scene(a, dir / "state.json", extras);
+  massspring::io::write_state(a, dir / "state.json", extras);
   CHECK_FALSE(std::filesystem::exists(dir / "state.json.tmp"));
 
-  const auto read = massspring::io::read_state_scene<System>(dir / "state.json");
+  const auto read = massspring::io::read_state<System>(dir / "state.json");
   check_equal(a, read.system);
   CHECK(std::signbit(read.system.velocities()(1, 0)));  // == does not see the sign of a zero
   CHECK(read.extras.faces == extras.faces);
@@ -160,7 +160,7 @@ void round_trip() {
   check_equal(a, loaded.system);
 
   // Written again from the loaded system: the same bytes.
-  massspring::io::write_scene(read.system, dir / "again.json", extras);
+  massspring::io::write_state(read.system, dir / "again.json", extras);
   CHECK(massspring::test::read_bytes(dir / "state.json") ==
         massspring::test::read_bytes(dir / "again.json"));
 
@@ -179,11 +179,11 @@ void round_trip() {
 
 }  // namespace
 
-TEST_CASE("state scene: write_scene then read_state_scene gives every field back, double") {
+TEST_CASE("state scene: write_state then read_state gives every field back, double") {
   round_trip<massspring::MassSpringSystem<double, massspring::Sparse>>();
 }
 
-TEST_CASE("state scene: write_scene then read_state_scene gives every field back, float") {
+TEST_CASE("state scene: write_state then read_state gives every field back, float") {
   round_trip<massspring::MassSpringSystem<float, massspring::Dense>>();
 }
 
@@ -201,7 +201,7 @@ TEST_CASE("state scene: a term it cannot hold is refused and nothing is written"
   s.add_force(UserTerm{});
   const auto path = dir / "s.json";
   CHECK_THROWS_WITH_AS(
-      massspring::io::write_scene(s, path),
+      massspring::io::write_state(s, path),
       (path.string() + ": force term 3 (a user's term) cannot be written: a state scene holds "
                        "gravity, constant force, linear drag, gravitational attraction and vortex "
                        "force terms")
@@ -214,7 +214,7 @@ TEST_CASE("state scene: a term it cannot hold is refused and nothing is written"
 TEST_CASE("state scene: bad files are refused, naming the file") {
   TempDir dir;
   using System = massspring::MassSpringSystem<double, massspring::Dense>;
-  massspring::io::write_scene(scrambled_cloth<System>(), dir / "good.json");
+  massspring::io::write_state(scrambled_cloth<System>(), dir / "good.json");
   std::string text = massspring::test::read_bytes(dir / "good.json");
   auto with = [&](const std::string& from, const std::string& to) {
     std::string t = text;
@@ -254,8 +254,8 @@ TEST_CASE("state scene: bad files are refused, naming the file") {
   // read_json_scene (the JSON+OBJ reader) says what the file is
   CHECK_THROWS_WITH_AS(massspring::io::read_json_scene(dir / "good.json"),
                        ((dir / "good.json").string() +
-                        ": a state scene (written by io::write_scene), not a JSON+OBJ scene: load "
-                        "it with io::load_scene or io::read_state_scene")
+                        ": a state scene (written by io::write_state), not a JSON+OBJ scene: load "
+                        "it with io::load_scene or io::read_state")
                            .c_str(),
                        Error);
 }
@@ -271,14 +271,14 @@ TEST_CASE_TEMPLATE("state scene: the surface and self-collision are written and 
   parameters.thickness = Scalar(0.01) / 3;  // not short decimals
   parameters.friction = Scalar(0.7) / 3;
   a.set_self_collision(parameters);
-  massspring::io::write_scene(a, dir / "state.json");
+  massspring::io::write_state(a, dir / "state.json");
   const auto j = nlohmann::json::parse(massspring::test::read_bytes(dir / "state.json"));
   CHECK(j.at("surface").size() == 48);
   CHECK(j.at("self_collision").size() == 2);
 
-  const System b = massspring::io::read_state_scene<System>(dir / "state.json").system;
+  const System b = massspring::io::read_state<System>(dir / "state.json").system;
   check_equal(a, b);
-  massspring::io::write_scene(b, dir / "again.json");
+  massspring::io::write_state(b, dir / "again.json");
   CHECK(massspring::test::read_bytes(dir / "state.json") ==
         massspring::test::read_bytes(dir / "again.json"));
 
@@ -286,7 +286,7 @@ TEST_CASE_TEMPLATE("state scene: the surface and self-collision are written and 
   System c = a;
   c.clear_self_collision();
   c.set_surface(massspring::Triangles(0, 3));
-  massspring::io::write_scene(c, dir / "plain.json");
+  massspring::io::write_state(c, dir / "plain.json");
   const auto plain = nlohmann::json::parse(massspring::test::read_bytes(dir / "plain.json"));
   CHECK_FALSE(plain.contains("surface"));
   CHECK_FALSE(plain.contains("self_collision"));
@@ -301,7 +301,7 @@ TEST_CASE("state scene: a bad surface or self-collision is refused, naming the f
   using System = massspring::MassSpringSystem<double, massspring::Sparse>;
   System good = scrambled_cloth<System>();
   good.set_self_collision({});
-  massspring::io::write_scene(good, dir / "good.json");
+  massspring::io::write_state(good, dir / "good.json");
   const auto root = nlohmann::json::parse(massspring::test::read_bytes(dir / "good.json"));
   const std::string bad = (dir / "bad.json").string();
   auto refused = [&](const char* key, const nlohmann::json& value, const std::string& message) {

@@ -5,12 +5,14 @@
 # build optimised), and run in an empty folder: with no argument, on its own saved state, and on
 # the project's scenes without pins (drape.json) and with an XML scene's force terms (orbit.xml),
 # each of which it saves and reads back.
-# Usage: cmake -DSOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -DCXX_COMPILER=... -P readme.cmake
+# Usage: cmake -DSOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -DCXX_COMPILER=... [-DCCACHE=...] -P readme.cmake
 foreach(var SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "readme.cmake: ${var} is not set")
   endif()
 endforeach()
+
+include(${CMAKE_CURRENT_LIST_DIR}/ccache.cmake)
 
 function(run)
   execute_process(COMMAND ${ARGN} WORKING_DIRECTORY ${WORK_DIR}/run

@@ -1,11 +1,13 @@
 # Installs massspring into a temporary prefix and builds two consumers: one with find_package from
 # that prefix, one with add_subdirectory of the source tree; runs both.
-# Usage: cmake -DSOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -DCXX_COMPILER=... -P run.cmake
+# Usage: cmake -DSOURCE_DIR=... -DWORK_DIR=... -DGENERATOR=... -DCXX_COMPILER=... [-DCCACHE=...] -P run.cmake
 foreach(var SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run.cmake: ${var} is not set")
   endif()
 endforeach()
+
+include(${CMAKE_CURRENT_LIST_DIR}/ccache.cmake)
 
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)

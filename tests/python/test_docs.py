@@ -1,6 +1,6 @@
 """The Python in the docs runs as printed: every ```python block of README.md and docs/python.md
 (one namespace per file, run from the checkout; interactive >>> blocks are shown output, not run),
-and examples/python/drape.py writes its PNG."""
+examples/python/drape.py writes its PNG, and examples/python/hanging_cloth.py runs."""
 
 import os
 import re
@@ -40,3 +40,10 @@ def test_drape_example_writes_a_png(tmp_path):
     assert "961 points" in run.stdout
     with open(png, "rb") as handle:
         assert handle.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_hanging_cloth_example_runs():
+    script = os.path.join(SOURCE_DIR, "examples", "python", "hanging_cloth.py")
+    run = subprocess.run([sys.executable, script], capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "600 points; lowest after 2 s:" in run.stdout

@@ -71,10 +71,13 @@ def test_options_are_checked_when_set():
     assert solver.options.iterations == 3
 
 
-def test_the_deprecated_options_gravity_warns():
+def test_the_removed_options_name_their_force_terms():
     solver = ms.FastMassSpring()
-    with pytest.warns(DeprecationWarning, match="add massspring.Gravity to the system"):
+    with pytest.raises(AttributeError, match="add massspring.Gravity"):
         solver.options.gravity = [0, -9.8, 0]
+    with pytest.raises(AttributeError, match="add massspring.ConstantForce"):
+        solver.options.external_force
+    assert solver.options.iterations == 50  # the options themselves are unchanged
 
 
 def test_help_names_array_arguments():
@@ -116,3 +119,14 @@ def test_a_json_scene_carries_its_gravity_and_dt(tmp_path):
         with pytest.raises(ms.Error, match=re.escape(message)):
             ms.load_scene(str(path))
     assert ms.load_scene_file(scene("chain.json")).dt is None
+
+
+def test_option_enums_read_and_write_the_command_lines_names():
+    assert ms.Acceleration.from_name("chebyshev") == ms.Acceleration.Chebyshev
+    assert ms.Acceleration.None_.text == "none"
+    assert ms.FillOrdering.from_name("nested-dissection") == ms.FillOrdering.NestedDissection
+    assert [ms.PinMode.from_name(p.text) for p in (ms.PinMode.Exact, ms.PinMode.Penalty)] == [
+        ms.PinMode.Exact, ms.PinMode.Penalty]
+    with pytest.raises(ms.Error, match=r'^acceleration: unknown value "fast" \(expected none, '
+                                       r'chebyshev or anderson\)$'):
+        ms.Acceleration.from_name("fast")

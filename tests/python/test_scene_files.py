@@ -39,7 +39,7 @@ def test_state_scene_round_trip(tmp_path):
     for _ in range(5):
         solver.step(s)
     path = str(tmp_path / "state.json")
-    ms.write_scene(s, path)
+    ms.write_state(s, path)
     back = ms.load_scene_file(path)
     assert back.state
     t = back.system

@@ -124,7 +124,7 @@ def test_a_state_file_keeps_the_surface_and_self_collision(tmp_path):
     system = ms.load_scene(scene("drape.json"))
     system.set_self_collision(thickness=0.01 / 3, friction=0.7 / 3)
     path = str(tmp_path / "state.json")
-    ms.write_scene(system, path)
+    ms.write_state(system, path)
     back = ms.load_scene(path)
     assert np.array_equal(back.surface, system.surface)
     assert np.array_equal(back.surface_edges, system.surface_edges)

@@ -15,8 +15,8 @@ using massspring::test::random_spd;
 
 namespace {
 
-// What view().wide must be when the AVX2 rows are allowed: the CPU (and the build) decide.
-bool expect_wide() { return massspring::detail::cpu_has_avx2_fma(); }
+// What view().simd must be when the AVX2 rows are allowed: the CPU (and the build) decide.
+bool expect_simd() { return massspring::detail::cpu_has_avx2_fma(); }
 
 }  // namespace
 
@@ -57,12 +57,12 @@ TEST_CASE_TEMPLATE(
     const Columns z = l.template triangularView<Eigen::Lower>().solve(b);
     const Columns u = l.transpose().template triangularView<Eigen::Upper>().solve(b);
     Rows sse2_z, sse2_u;
-    for (const bool avx2 : {false, true}) {
-      CAPTURE(avx2);
-      llt.set_avx2(avx2);
+    for (const bool simd : {false, true}) {
+      CAPTURE(simd);
+      llt.set_simd(simd);
       const auto view = llt.lower();
-      CHECK(view.wide == (avx2 && expect_wide()));
-      CHECK(llt.avx2() == view.wide);
+      CHECK(view.simd == (simd && expect_simd()));
+      CHECK(llt.simd() == view.simd);
       // The row copy is the strict lower part of L, row by row, columns ascending.
       const Eigen::SparseMatrix<Scalar, Eigen::RowMajor, int> rows =
           Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int>(
@@ -80,10 +80,10 @@ TEST_CASE_TEMPLATE(
       Rows v = b;
       view.backward(v.data());
       CHECK((v - u).norm() <= tol * u.norm());
-      if (!avx2) {
+      if (!simd) {
         sse2_z = w;
         sse2_u = v;
-      } else if (view.wide && edges > 0) {
+      } else if (view.simd && edges > 0) {
         // The AVX2 rows ran: fused multiply-adds round differently somewhere in 300 rows.
         CHECK(w != sse2_z);
         CHECK(v != sse2_u);
@@ -102,7 +102,7 @@ TEST_CASE_TEMPLATE("LowerFactor: a substitution writes three values per row, nev
   massspring::SparseCholesky<Scalar> llt;
   REQUIRE(llt.compute(q));
   const auto view = llt.lower();
-  CAPTURE(view.wide);
+  CAPTURE(view.simd);
   using Columns = Eigen::Matrix<Scalar, Eigen::Dynamic, 3>;
   const Columns b = Columns::Random(n, 3);
   std::vector<Scalar> w(std::size_t(3 * n + 3), Scalar(7));

@@ -158,11 +158,11 @@ TEST_CASE("SparseCholesky with threads: a valid split, and the same solution bit
       const massspring::Points<double> b = massspring::Points<double>::Random(n, 3);
       massspring::Points<double> x1(n, 3), x2(n, 3);
       // With the AVX2 substitution where the CPU has it (the default), and with the SSE2 one.
-      for (const bool avx2 : {true, false}) {
-        CAPTURE(avx2);
-        serial.set_avx2(avx2);
-        parallel.set_avx2(avx2);
-        CHECK(serial.avx2() == parallel.avx2());
+      for (const bool simd : {true, false}) {
+        CAPTURE(simd);
+        serial.set_simd(simd);
+        parallel.set_simd(simd);
+        CHECK(serial.simd() == parallel.simd());
         serial.solve(b, x1);
         parallel.solve(b, x2);
         CHECK(x1 == x2);

@@ -3,7 +3,7 @@
 /// @brief CollisionHandler: the one hook by which collision response plugs into a time step, and
 /// handle_collisions(), the call an integrator makes after it computed the end-of-step state.
 ///
-/// The course's order (FOSSSim, Theme 2, ParticleSimulation::stepSystem): save (x, v), step the
+/// FOSSSim's order (Theme 2, ParticleSimulation::stepSystem): save (x, v), step the
 /// integrator, then `handleCollisions(scene, detector, oldpos, oldvel, dt)`, which may change the
 /// end-of-step positions and velocities. Here an integrator calls
 ///
@@ -40,7 +40,7 @@ struct CollisionStep {
   Scalar dt;
   /// @brief #points masses [kg].
   const Vector<Scalar>& masses;
-  /// @brief Pinned (the course's fixed) points, ascending: infinite mass, never moved.
+  /// @brief Pinned (FOSSSim's fixed) points, ascending: infinite mass, never moved.
   const std::vector<int>& pinned;
 };
 
@@ -87,9 +87,9 @@ class CollisionHandlerSlot {
 };
 
 /// @brief Applies the system's collision response to the end-of-step state: its handler, if it
-/// has one, then its colliders (contact/colliders/colliders.hpp), which also take their end-of-step pose.
-/// The one call an integrator makes, after computing (x_end, v_end) from (x_start, v_start) and
-/// before committing them; once the step is committed, the integrator calls
+/// has one, then its colliders (contact/colliders/colliders.hpp), which also take their end-of-step
+/// pose. The one call an integrator makes, after computing (x_end, v_end) from (x_start, v_start)
+/// and before committing them; once the step is committed, the integrator calls
 /// system.colliders().end_step().
 /// @tparam System a MassSpringSystem (anything with collision_handler(), colliders(), masses(),
 /// pinned())

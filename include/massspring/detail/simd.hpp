@@ -5,11 +5,11 @@
 /// On x86-64 with GCC or Clang, the substitutions with the factor of Q
 /// (storage/lower_factor_simd.hpp) have a version compiled for AVX2 and FMA next to the baseline
 /// (SSE2) one, and run it when the CPU has both, whatever the compiler's -m flags. Defining
-/// MASSSPRING_NO_AVX2 before including any massspring header leaves those versions out.
+/// MASSSPRING_NO_SIMD before including any massspring header leaves those versions out.
 
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(MASSSPRING_NO_AVX2)
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(MASSSPRING_NO_SIMD)
 /// Defined when the AVX2 + FMA versions are compiled in.
-#define MASSSPRING_HAVE_AVX2_PATH 1
+#define MASSSPRING_HAVE_SIMD_PATH 1
 /// The attribute of a function compiled for AVX2 and FMA.
 #define MASSSPRING_TARGET_AVX2 __attribute__((target("avx2,fma")))
 #include <immintrin.h>
@@ -43,7 +43,7 @@ namespace massspring::detail {
 /// @brief True when the AVX2 + FMA versions are compiled in and the CPU runs them (checked
 /// once).
 inline bool cpu_has_avx2_fma() {
-#ifdef MASSSPRING_HAVE_AVX2_PATH
+#ifdef MASSSPRING_HAVE_SIMD_PATH
   static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   return has;
 #else

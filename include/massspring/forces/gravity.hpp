@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief Gravity (an acceleration, F_i = m_i g) and ConstantForce (the same force on every point,
-/// the assignment's convention).
+/// the JSON+OBJ scenes' convention).
 
 #include <Eigen/Core>
 
@@ -40,7 +40,7 @@ struct Gravity {
 };
 
 /// @brief The same force on every point, whatever its mass: F_i = f, E = -sum_i f . x_i [N].
-/// The assignment's scenes use (0, -9.8, 0). Its Jacobians are zero.
+/// The JSON+OBJ scenes use (0, -9.8, 0). Its Jacobians are zero.
 template <class Scalar>
 struct ConstantForce {
   Vector3<Scalar> force = Vector3<Scalar>::Zero();

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief VortexForce: the course's vortex force (FOSSSim, Theme 1, VortexForce::addGradEToTotal,
+/// @brief VortexForce: FOSSSim's vortex force (Theme 1, VortexForce::addGradEToTotal,
 /// scene t1m3/VortexExample.xml): particle j swirls around particle i.
 
 #include <Eigen/Core>
@@ -20,13 +20,13 @@ namespace massspring {
 /// \f[ F_j = \frac{k_{vc}}{r^2}\left(k_{bs}\, \hat z \times \frac{d}{r} - (v_j - v_i)\right),
 /// \qquad F_i = -F_j \f]
 /// a tangential push of strength kbs (z^ x d / r is d / r turned 90 degrees counter-clockwise in
-/// the plane z = 0: the course's (-d_y, d_x) / r) against the relative velocity, both falling off
+/// the plane z = 0: FOSSSim's (-d_y, d_x) / r) against the relative velocity, both falling off
 /// as 1 / r^2. kbs [m/s], kvc [kg m^2 / s]: F in N. Internal: F_i + F_j = 0.
 ///
-/// The course defines no energy and no Jacobians for it (its addEnergyToTotal and addHess*
+/// FOSSSim defines no energy and no Jacobians for it (its addEnergyToTotal and addHess*
 /// exit with "No energy defined for VortexForce"), so neither is given here: implicit
 /// integrators treat the term explicitly. Velocity-dependent. Coincident points (r = 0) give a
-/// non-finite force, as in the course.
+/// non-finite force, as in FOSSSim.
 template <class Scalar>
 class VortexForce {
  public:

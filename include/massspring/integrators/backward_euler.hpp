@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief BackwardEuler: implicit Euler, linearised (one Newton step, as the course defines it) or
+/// @brief BackwardEuler: implicit Euler, linearised (one Newton step, as FOSSSim defines it) or
 /// solved by Newton's method to a tolerance with a line search.
 
 #include <Eigen/Core>
@@ -22,7 +22,7 @@ namespace massspring {
 /// @brief How BackwardEuler solves x' = x + h v', v' = v + h M^-1 F(x', v').
 enum class BackwardEulerMode {
   /// One Newton step from (x + h v, v): (M - h dF/dv - h^2 dF/dx) dv = h F(x + h v, v),
-  /// v' = v + dv, x' = x + h v'. Exact for linear forces; the course's "linearized implicit
+  /// v' = v + dv, x' = x + h v'. Exact for linear forces; FOSSSim's "linearized implicit
   /// Euler".
   Linearized,
   /// Newton's method on the same equations, from x + h v, until the update is below the
@@ -37,7 +37,7 @@ struct BackwardEulerOptions {
   /// @brief Linearized or Newton (default Newton).
   BackwardEulerMode mode = BackwardEulerMode::Newton;
   /// @brief Newton: most iterations per step (>= 1). Default 20.
-  int max_iterations = 20;
+  int iterations = 20;
   /// @brief Newton: stop when max_i |dx_i| <= tolerance * (1 + max_i |x_i|). Default 1e-10
   /// (use about 1e-5 in float).
   Scalar tolerance = Scalar(1e-10);
@@ -52,7 +52,7 @@ struct BackwardEulerOptions {
 /// damping off the spring axis). In Newton mode an indefinite A is replaced by its definite
 /// projection (compressed springs' transverse stiffness clamped to 0) so each direction descends.
 /// The pattern of A is recorded in precompute() (and again after the system's revision changes);
-/// each step assembles values into it and factorises numerically.
+/// each step assembles values into it and factorizes numerically.
 ///
 /// The system's collision handler, if any, acts on the end-of-step state before it is committed
 /// (contact/collision_handler.hpp).
@@ -97,9 +97,9 @@ class BackwardEuler {
       throw Error(detail::message("BackwardEuler: the system has ", system.num_points(),
                                   " points, precompute() saw ", dx_.size() / 3,
                                   "; call precompute() again"));
-    if (options.max_iterations < 1)
-      throw Error(detail::message("BackwardEuler: max_iterations must be >= 1, got ",
-                                  options.max_iterations));
+    if (options.iterations < 1)
+      throw Error(
+          detail::message("BackwardEuler: iterations must be >= 1, got ", options.iterations));
     detail::require_number("BackwardEuler", "tolerance", double(options.tolerance), false);
     StepReport report;
     if (system.num_points() == 0) {  // nothing moves; max over an empty residual is undefined
@@ -127,7 +127,7 @@ class BackwardEuler {
       moved_.row(pinned[r]) = x_.row(pinned[r]) - x0.row(pinned[r]) - h * v0.row(pinned[r]);
     }
 
-    const int iterations = newton ? options.max_iterations : 1;
+    const int iterations = newton ? options.iterations : 1;
     for (int it = 0; it < iterations; ++it) {
       residual(system, x_, moved_, r_);
       report.residual = double(r_.cwiseAbs().maxCoeff() / (h * h));
@@ -158,7 +158,7 @@ class BackwardEuler {
 
   /// @brief The time step [s].
   [[nodiscard]] Scalar dt() const { return dt_; }
-  /// @brief The factorisation the last solve used (Cholesky unless A was indefinite or not
+  /// @brief The factorization the last solve used (Cholesky unless A was indefinite or not
   /// symmetric).
   [[nodiscard]] LinearSolverPath last_solver_path() const { return solver_.path(); }
   /// @brief The last assembled matrix A.

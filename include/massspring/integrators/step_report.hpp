@@ -19,7 +19,7 @@ enum class Convergence {
   NotConverged,
 };
 
-/// @brief The outcome of one step. A step that fails (`ok() == false`: a failed factorisation, a
+/// @brief The outcome of one step. A step that fails (`ok() == false`: a failed factorization, a
 /// non-finite value, or an energy blow-up caught by a DivergenceGuard) leaves the system's
 /// positions and velocities exactly as they were before the step.
 struct StepReport {
@@ -43,9 +43,9 @@ struct StepReport {
   Convergence convergence = Convergence::NotTested;
   /// @brief True when every new position and velocity is finite. When false, nothing was changed.
   bool finite = true;
-  /// @brief True when this step had to factorise again because the model changed since the last.
+  /// @brief True when this step had to factorize again because the model changed since the last.
   bool refactorized = false;
-  /// @brief True when this step had to factorise again and the matrix could not be factorised
+  /// @brief True when this step had to factorize again and the matrix could not be factorized
   /// (not numerically positive definite). Nothing was changed; the next step tries again.
   bool factorization_failed = false;
   /// @brief True when a DivergenceGuard found the total energy after this step beyond its limit
@@ -59,7 +59,7 @@ struct StepReport {
   /// was changed then.
   bool contact_resolved = true;
 
-  /// @brief A step succeeded when it could factorise, its result is finite, its energy did not
+  /// @brief A step succeeded when it could factorize, its result is finite, its energy did not
   /// blow up and its contact was resolved.
   [[nodiscard]] bool ok() const {
     return finite && !blew_up && !factorization_failed && contact_resolved;

@@ -21,7 +21,7 @@
 ///   `<halfplanecolor>`, `<particlepath>`, `<backgroundcolor>`, `<viewport>`, `<maxsimfreq>`:
 ///   rendering only, ignored.
 /// Anything else is refused. Attributes written without a blank between them (`vx="0"vy="0"`,
-/// not XML but read by the course's parser) are read as the course reads them.
+/// not XML but read by FOSSSim's parser) are read as FOSSSim reads them.
 
 #include "massspring/io/fosssim/parse.hpp"
 #include "massspring/io/fosssim/reader.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief read_json_scene() and write_json_scene(): the assignment's JSON+OBJ scene format
+/// @brief read_json_scene() and write_json_scene(): the JSON+OBJ scene format
 /// (docs/scenes.md), read strictly with nlohmann-json.
 
 #include <algorithm>
@@ -100,8 +100,8 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 
   if (root.contains("massspring_state"))
     throw error(
-        "a state scene (written by io::write_scene), not a JSON+OBJ scene: load it with "
-        "io::load_scene or io::read_state_scene");
+        "a state scene (written by io::write_state), not a JSON+OBJ scene: load it with "
+        "io::load_scene or io::read_state");
   for (const auto& item : root.items()) {
     const std::string& key = item.key();
     if (key == "bc")
@@ -214,7 +214,7 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
   return scene;
 }
 
-/// @brief Reads a scene in the assignment's JSON+OBJ format.
+/// @brief Reads a scene in the JSON+OBJ format.
 ///
 /// The JSON object has the keys
 /// - `"obj"` (required string): the OBJ file, relative to the JSON file's folder, read with
@@ -241,7 +241,7 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
 /// `"bc"` (pinned positions: not supported), a pin out of range (its 1-based value and its
 /// position in "b"), a non-finite or negative stiffness, a mass that is not > 0; naming the file
 /// with nlohmann's line and column when the text is not JSON; for a state scene (the key
-/// "massspring_state": written by write_scene(), read by load_scene() or read_state_scene()); and
+/// "massspring_state": written by write_state(), read by load_scene() or read_state()); and
 /// read_obj()'s errors (file and line) for the OBJ file; for "self_collision" that is not an
 /// object, has a key other than thickness and friction, or a value out of range (naming it:
 /// `<json>: key "self_collision": "thickness": expected a finite number > 0, got 0`); for a
@@ -257,7 +257,7 @@ SceneDescription<Scalar> read_json_scene(const std::filesystem::path& json) {
       });
 }
 
-/// @brief Writes a scene in the assignment's JSON+OBJ format: `<stem>.obj` beside `json` (with
+/// @brief Writes a scene in the JSON+OBJ format: `<stem>.obj` beside `json` (with
 /// write_obj(): polygons as `f a b c ...`, edges as `f i j`), then `json` referencing it, pins
 /// 1-based, `"m"` only when the mass is given, `"self_collision"` (both fields) only when it is
 /// given, the colliders (a mesh collider's triangles in

@@ -37,7 +37,7 @@ struct LoadedScene {
   std::optional<FosssimScene> fosssim;
   /// @brief A state scene's "run" object (null otherwise, or when it has none).
   nlohmann::json run;
-  /// @brief True for a state scene (written by write_scene()).
+  /// @brief True for a state scene (written by write_state()).
   bool state = false;
 };
 
@@ -52,8 +52,8 @@ struct SceneFormat {
   LoadedScene<System> (*load)(const std::filesystem::path&);
 };
 
-/// @brief A .json file: a state scene (write_scene(): an object with "massspring_state") is read
-/// with parse_state_scene(); anything else as the assignment's JSON+OBJ scene: read_json_scene(),
+/// @brief A .json file: a state scene (write_state(): an object with "massspring_state") is read
+/// with parse_state_scene(); anything else as the JSON+OBJ scene: read_json_scene(),
 /// then make_system(), whose errors get the scene's path in front.
 template <class System>
 LoadedScene<System> load_json_scene(const std::filesystem::path& path) {
@@ -134,8 +134,8 @@ LoadedScene<System> load_scene_file(const std::filesystem::path& path) {
 }
 
 /// @brief Loads a scene file into a system, the format chosen by the extension (any case):
-/// `.json` is the assignment's JSON+OBJ format (read_json_scene(), then make_system()) or a state
-/// scene written by write_scene() (an object with the key "massspring_state": the system exactly
+/// `.json` is the JSON+OBJ format (read_json_scene(), then make_system()) or a state
+/// scene written by write_state() (an object with the key "massspring_state": the system exactly
 /// as written); `.xml` is FOSSSim's 2D XML format (read_fosssim_scene(), then
 /// make_fosssim_system(): the system carries the scene's gravity, attraction and drag as force
 /// terms). The XML scene's integrator, time step and duration are not part of a system: read them

@@ -1,11 +1,11 @@
 #pragma once
 /// @file
 /// @brief read_obj() and write_obj(): a strict reader and an exact writer of Wavefront OBJ meshes
-/// whose faces may have 2 vertices (the assignment's springs, `f i j`) or more (polygons).
+/// whose faces may have 2 vertices (the JSON+OBJ scenes' springs, `f i j`) or more (polygons).
 ///
-/// Why not tinyobjloader: it silently drops 2-vertex faces, which is all the assignment's chain,
-/// net and spring files hold, and reads malformed numbers such as `x` or `nan` as 0. This reader
-/// refuses anything it does not understand, naming the file and line.
+/// Why not tinyobjloader: it silently drops 2-vertex faces, which is all the JSON+OBJ scenes'
+/// chain, net and spring files hold, and reads malformed numbers such as `x` or `nan` as 0. This
+/// reader refuses anything it does not understand, naming the file and line.
 
 #include <array>
 #include <charconv>
@@ -293,7 +293,7 @@ ObjMesh<Scalar> read_obj(const std::filesystem::path& path) {
 
 /// @brief Writes an OBJ mesh that read_obj() reads back exactly: every coordinate as the shortest
 /// decimal that parses to the same bits (std::to_chars), indices 1-based, polygons as `f a b c
-/// ...`, edges as 2-vertex faces `f i j` (the assignment's convention for springs). The file is
+/// ...`, edges as 2-vertex faces `f i j` (the JSON+OBJ scenes' convention for springs). The file is
 /// written to `<path>.tmp` and then renamed over `path`.
 /// @param[in] path       the .obj file to write (its folder must exist)
 /// @param[in] positions  #V by 3 vertex positions, finite

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// @brief write_scene() and read_state_scene(): a system's whole model and state as one JSON file
+/// @brief write_state() and read_state(): a system's whole model and state as one JSON file
 /// (a "state scene"), so that a run can be saved and resumed.
 ///
-/// The file is one JSON object, every index 0-based (unlike the assignment's 1-based pins):
+/// The file is one JSON object, every index 0-based (unlike the JSON+OBJ scenes' 1-based pins):
 ///
 ///     {"massspring_state": 1,                       // the format's version
 ///      "rest_positions": [[x, y, z], ...],          // #points rows [m]
@@ -39,8 +39,8 @@
 #include "massspring/forces/gravity.hpp"
 #include "massspring/forces/linear_drag.hpp"
 #include "massspring/io/detail/json_text.hpp"
-#include "massspring/io/detail/state_forces.hpp"
 #include "massspring/io/detail/state_colliders.hpp"
+#include "massspring/io/detail/state_forces.hpp"
 #include "massspring/io/detail/state_surface.hpp"
 #include "massspring/io/detail/text_file.hpp"
 #include "massspring/io/obj.hpp"
@@ -85,7 +85,7 @@ inline constexpr const char* kStateSceneKey = "massspring_state";
 /// range, a file that cannot be written, a rename that failed (the `.tmp` is then kept, whole, and
 /// the message names it).
 template <class System>
-void write_scene(const System& system, const std::filesystem::path& path,
+void write_state(const System& system, const std::filesystem::path& path,
                  const StateSceneExtras& extras = {}) {
   using detail::append_list;
   using detail::append_rows;
@@ -168,10 +168,10 @@ inline bool is_state_scene(const nlohmann::json& root) {
   return root.is_object() && root.contains(detail::kStateSceneKey);
 }
 
-/// @brief The reader behind read_state_scene(), on parsed JSON.
+/// @brief The reader behind read_state(), on parsed JSON.
 /// @param[in] root  the file's JSON value
 /// @param[in] path  the file, named in every message
-/// @throws Error as read_state_scene() does.
+/// @throws Error as read_state() does.
 template <class System>
 StateScene<System> parse_state_scene(const nlohmann::json& root,
                                      const std::filesystem::path& path) {
@@ -307,7 +307,7 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
   return out;
 }
 
-/// @brief Reads a state scene written by write_scene().
+/// @brief Reads a state scene written by write_state().
 /// @tparam System a MassSpringSystem<Scalar, Storage>
 /// @param[in] path  the .json file
 /// @throws Error naming the path: not JSON, not a state scene, an unknown version or key, a
@@ -315,7 +315,7 @@ StateScene<System> parse_state_scene(const nlohmann::json& root,
 /// the system's constructor and setters (a mass <= 0, a spring out of range, a surface triangle
 /// out of range or of zero area, self-collision without a surface, ...).
 template <class System>
-StateScene<System> read_state_scene(const std::filesystem::path& path) {
+StateScene<System> read_state(const std::filesystem::path& path) {
   const std::string text = detail::read_text_file(path, "state scene");
   nlohmann::json root;
   try {

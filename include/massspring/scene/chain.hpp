@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief make_chain(): points on a straight line joined by springs, like the assignment's
+/// @brief make_chain(): points on a straight line joined by springs, like the JSON+OBJ scenes'
 /// horizontal chain.
 
 #include <cmath>

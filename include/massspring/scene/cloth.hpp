@@ -44,7 +44,7 @@ struct ClothOptions {
   double width = 1.2;
   /// @brief Extent along the other axis [m], > 0.
   double height = 1.0;
-  /// @brief Diagonal springs per cell (default Both, like the assignment's flag).
+  /// @brief Diagonal springs per cell (default Both, like the JSON+OBJ scenes' flag).
   ClothShear shear = ClothShear::Both;
   /// @brief Skip-one springs, (r, c)-(r, c+2) and (r, c)-(r+2, c), written as 2-vertex edges.
   bool bending = false;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief make_net(): a rectangular net of springs along its rows and columns, lying flat, like
-/// the assignment's net.
+/// the JSON+OBJ scenes' net.
 
 #include <cmath>
 

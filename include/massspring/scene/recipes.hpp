@@ -11,8 +11,8 @@
 
 namespace massspring {
 
-/// @brief A chain like the assignment's horizontal chain: 10 points over 1 m along +x, both ends
-/// pinned, k = 500 N/m, 1 kg per point.
+/// @brief A chain like the JSON+OBJ scenes' horizontal chain: 10 points over 1 m along +x, both
+/// ends pinned, k = 500 N/m, 1 kg per point.
 inline ChainOptions chain_recipe() {
   ChainOptions chain;
   chain.points = 10;
@@ -23,8 +23,8 @@ inline ChainOptions chain_recipe() {
   return chain;
 }
 
-/// @brief A net like the assignment's: 8 x 8 points over 1 m x 1 m, horizontal, hung by its four
-/// corners, k = 300 N/m, 1 kg per point.
+/// @brief A net like the JSON+OBJ scenes': 8 x 8 points over 1 m x 1 m, horizontal, hung by its
+/// four corners, k = 300 N/m, 1 kg per point.
 inline NetOptions net_recipe() {
   NetOptions net;
   net.columns = 8;
@@ -66,7 +66,7 @@ inline ClothOptions curtain_recipe() {
   return curtain;
 }
 
-/// @brief A flag like the assignment's: 60 x 50 points over 1.2 m x 1 m, lying flat, quads with
+/// @brief A flag like the JSON+OBJ scenes': 60 x 50 points over 1.2 m x 1 m, lying flat, quads with
 /// both diagonals, held at two corners, k = 1000 N/m, lumped Voronoi masses (1.2 kg in all).
 inline ClothOptions flag_recipe() {
   ClothOptions flag;
@@ -82,7 +82,7 @@ inline ClothOptions flag_recipe() {
   return flag;
 }
 
-/// @brief The cloth of the drape (issue 22's cost figure, the demo): 81 x 81 points over
+/// @brief The cloth of the drape (the contact cost benchmark, the demo): 81 x 81 points over
 /// 1 m x 1 m, lying flat in the x-z plane at y = 0 (y is up), one diagonal per cell, skip-one
 /// bending springs, nothing pinned, k = 1000 N/m, lumped Voronoi masses (1 kg in all): the
 /// curtain's cloth, laid down. drape_obstacles() gives what it falls on.

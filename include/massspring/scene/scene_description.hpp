@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief SceneDescription: a mesh, its pins, stiffness and mass, as the assignment's JSON+OBJ
+/// @brief SceneDescription: a mesh, its pins, stiffness and mass, as the JSON+OBJ
 /// scenes hold them, and the obstacles it falls on. make_system() turns it into a MassSpringSystem.
 
 #include <optional>

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief voronoi_masses(): lumped per-vertex areas of a polygon mesh (mixed Voronoi, Meyer et al.
-/// 2003), the masses the assignment's scenes get when they give none.
+/// 2003), the masses the JSON+OBJ scenes' scenes get when they give none.
 
 #include <Eigen/Geometry>
 #include <vector>

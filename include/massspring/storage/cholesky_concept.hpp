@@ -1,12 +1,12 @@
 #pragma once
 /// @file
-/// @brief What a factorisation of Q must provide to serve a solver (FastMassSpring), written once:
+/// @brief What a factorization of Q must provide to serve a solver (FastMassSpring), written once:
 /// detection traits for the required and the optional members, and require_cholesky(), whose
-/// static_assert messages say what a user-supplied factorisation is missing.
+/// static_assert messages say what a user-supplied factorization is missing.
 ///
 /// Required, for a #rows by 3 right-hand side stored row-major (w[3 r + c]) in the factor's
 /// order (row permutation()[i] of w is row i of Q's unknowns):
-/// - `bool compute(const Matrix& q)`: factorise P Q P^T = L L^T; false when Q is not numerically
+/// - `bool compute(const Matrix& q)`: factorize P Q P^T = L L^T; false when Q is not numerically
 ///   positive definite;
 /// - `const Eigen::VectorXi& permutation() const`;
 /// - `void solve_in_place(Scalar* w)`: w = (P Q P^T)^-1 w, allocating nothing;
@@ -16,7 +16,7 @@
 ///   `static std::vector<int> ordering_of(const Matrix& q)`: a given elimination order
 ///   (FillOrdering::NestedDissection, FillOrdering::Auto);
 /// - `void set_threads(int)`, `int threads() const`: substitutions on several threads;
-/// - `void set_avx2(bool)`: allow the SIMD substitution.
+/// - `void set_simd(bool)`: allow the SIMD substitution.
 /// SparseCholesky, DenseCholesky and CholmodCholesky provide these.
 
 #include <Eigen/Core>
@@ -73,18 +73,18 @@ struct cholesky_has_threads<C, std::void_t<decltype(std::declval<C&>().set_threa
                                            decltype(std::declval<const C&>().threads())>>
     : std::true_type {};
 
-/// @brief Has set_avx2(bool).
+/// @brief Has set_simd(bool).
 template <class C, class = void>
 struct cholesky_has_simd : std::false_type {};
 template <class C>
-struct cholesky_has_simd<C, std::void_t<decltype(std::declval<C&>().set_avx2(true))>>
+struct cholesky_has_simd<C, std::void_t<decltype(std::declval<C&>().set_simd(true))>>
     : std::true_type {};
 
 /// @brief Fails to compile, saying what is missing, unless C has the required members above.
 template <class C, class Matrix, class Scalar>
 constexpr bool require_cholesky() {
   static_assert(cholesky_has_compute<C, Matrix>::value,
-                "massspring: the Cholesky type needs `bool compute(const Matrix& q)` (factorise "
+                "massspring: the Cholesky type needs `bool compute(const Matrix& q)` (factorize "
                 "P Q P^T = L L^T; false when Q is not positive definite)");
   static_assert(cholesky_has_permutation<C>::value,
                 "massspring: the Cholesky type needs `const Eigen::VectorXi& permutation() const` "

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief CholmodCholesky: Q factorised by SuiteSparse's CHOLMOD (supernodal, with its choice of
+/// @brief CholmodCholesky: Q factorized by SuiteSparse's CHOLMOD (supernodal, with its choice of
 /// fill-reducing ordering, METIS included), then solved by massspring's own fused n x 3
 /// substitution. Optional: needs libcholmod (target massspring::cholmod, which defines
 /// MASSSPRING_HAS_CHOLMOD); the core never includes this header.
@@ -8,7 +8,7 @@
 /// Use it as FastMassSpring's second template argument:
 ///   massspring::FastMassSpring<System, massspring::CholmodCholesky<double>> solver;
 ///
-/// CHOLMOD factorises in double whatever the Scalar (SuiteSparse 5 has no single precision); the
+/// CHOLMOD factorizes in double whatever the Scalar (SuiteSparse 5 has no single precision); the
 /// factor is converted to a simplicial L L^T and copied into Scalar arrays, so that every iteration
 /// runs the same allocation-free substitution as SparseCholesky.
 
@@ -58,7 +58,7 @@ class CholmodCholesky {
   CholmodCholesky(const CholmodCholesky&) = delete;
   CholmodCholesky& operator=(const CholmodCholesky&) = delete;
 
-  /// @brief Orders, factorises (supernodal) and converts the factor of Q (lower triangle read).
+  /// @brief Orders, factorizes (supernodal) and converts the factor of Q (lower triangle read).
   /// Allocates. @return false when Q is not numerically positive definite.
   bool compute(const Matrix& q) {
     free_factor();
@@ -108,7 +108,7 @@ class CholmodCholesky {
 
   /// @brief True after a successful compute().
   [[nodiscard]] bool ok() const { return ok_; }
-  /// @brief Order of the factorised matrix.
+  /// @brief Order of the factorized matrix.
   [[nodiscard]] Eigen::Index rows() const { return work_.rows(); }
   /// @brief Stored entries of the factor L (diagonal included).
   [[nodiscard]] Eigen::Index factor_nonzeros() const { return Eigen::Index(inner_.size()); }
@@ -124,9 +124,9 @@ class CholmodCholesky {
   [[nodiscard]] int chosen_ordering() const { return analysed_ordering_; }
 
   /// @brief Allow the AVX2 + FMA substitution (default true; see SparseCholesky::set_avx2).
-  void set_avx2(bool allowed) { rows_.wide = allowed; }
+  void set_simd(bool allowed) { rows_.simd = allowed; }
   /// @brief True when solves use the AVX2 + FMA substitution.
-  [[nodiscard]] bool avx2() const { return lower().wide; }
+  [[nodiscard]] bool simd() const { return lower().simd; }
   /// @brief L and its inverse diagonal (see detail::LowerFactor).
   [[nodiscard]] detail::LowerFactor<Scalar, int> lower() const {
     return rows_.view(int(rows()), outer_.data(), inner_.data(), value_.data());

@@ -14,7 +14,7 @@
 
 namespace massspring {
 
-/// @brief Dense Cholesky factorisation Q = L L^T of a symmetric positive definite matrix, solving
+/// @brief Dense Cholesky factorization Q = L L^T of a symmetric positive definite matrix, solving
 /// for #rows by 3 right-hand sides.
 template <class Scalar_>
 class DenseCholesky {
@@ -22,7 +22,7 @@ class DenseCholesky {
   using Scalar = Scalar_;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
-  /// @brief Factorises Q (only its lower triangle is read). Allocates; call it once per change of
+  /// @brief Factorizes Q (only its lower triangle is read). Allocates; call it once per change of
   /// Q.
   /// @return false when Q is not numerically positive definite.
   bool compute(const Matrix& q) {
@@ -35,7 +35,7 @@ class DenseCholesky {
 
   /// @brief True after a successful compute().
   [[nodiscard]] bool ok() const { return ok_; }
-  /// @brief Order of the factorised matrix.
+  /// @brief Order of the factorized matrix.
   [[nodiscard]] Eigen::Index rows() const { return work_.rows(); }
   /// @brief Stored entries of the factor L (the lower triangle, diagonal included).
   [[nodiscard]] Eigen::Index factor_nonzeros() const { return rows() * (rows() + 1) / 2; }

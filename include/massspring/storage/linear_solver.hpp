@@ -28,9 +28,9 @@
 
 namespace massspring {
 
-/// @brief Which factorisation the last factorize() used.
+/// @brief Which factorization the last factorize() used.
 enum class LinearSolverPath {
-  None,          ///< nothing factorised yet, or the factorisation failed
+  None,          ///< nothing factorized yet, or the factorization failed
   Cholesky,      ///< A was symmetric positive definite
   Indefinite,    ///< Cholesky failed: the symmetric indefinite fallback (Dense LDLT, Sparse LDLT)
   IndefiniteLU,  ///< Sparse only: LDLT failed too (a zero pivot), so LU
@@ -38,7 +38,7 @@ enum class LinearSolverPath {
 };
 
 namespace detail {
-/// @brief x = A^-1 b with the factorisation `path` names (NaN when none succeeded): the one
+/// @brief x = A^-1 b with the factorization `path` names (NaN when none succeeded): the one
 /// dispatch both storages share.
 template <class Llt, class Ldlt, class Lu, class B, class X>
 void solve_on_path(LinearSolverPath path, const Llt& llt, const Ldlt& ldlt, const Lu& lu,
@@ -70,7 +70,7 @@ class LinearSolver<Dense, Scalar> {
  public:
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
-  /// @brief Prepares for matrices of A's size (allocates the factor storage). The factorisations
+  /// @brief Prepares for matrices of A's size (allocates the factor storage). The factorizations
   /// are computed once on the identity of that size: Eigen's size constructors leave their info
   /// uninitialised, and copying such an object reads it (UBSan: an invalid ComputationInfo).
   void analyze(const Matrix& a) {
@@ -79,7 +79,7 @@ class LinearSolver<Dense, Scalar> {
     ldlt_.compute(identity);
     lu_.compute(identity);
   }
-  /// @brief Factorises A. @return false when no factorisation succeeded.
+  /// @brief Factorizes A. @return false when no factorization succeeded.
   bool factorize(const Matrix& a, bool symmetric, bool fallback = true) {
     path_ = LinearSolverPath::None;
     if (!symmetric) {
@@ -127,7 +127,7 @@ class LinearSolver<Sparse, Scalar> {
     ldlt_analyzed_ = false;
     lu_analyzed_ = false;
   }
-  /// @brief Factorises A (same pattern as analysed). @return false when nothing succeeded.
+  /// @brief Factorizes A (same pattern as analysed). @return false when nothing succeeded.
   bool factorize(const Matrix& a, bool symmetric, bool fallback = true) {
     path_ = LinearSolverPath::None;
     if (symmetric) {

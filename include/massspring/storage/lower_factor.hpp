@@ -31,7 +31,7 @@ namespace detail {
 /// (docs/performance.md compares it with a column-oriented substitution).
 ///
 /// forward_row() and backward_row() are the baseline (SSE2) rows. forward_rows(), backward_rows()
-/// and everything built on them take the AVX2 + FMA rows instead when `wide` is set: the same
+/// and everything built on them take the AVX2 + FMA rows instead when `simd` is set: the same
 /// sums, rounded once per product and split four ways instead of two.
 template <class Scalar, class Index>
 struct LowerFactor {
@@ -53,20 +53,20 @@ struct LowerFactor {
   /// Substitute with the AVX2 + FMA rows (LowerFactorRows::view() sets it when the CPU has
   /// both). Their results differ from the SSE2 rows' in the last bits: each product is added
   /// with one rounding (a fused multiply-add) instead of two.
-  bool wide = false;
+  bool simd = false;
 
   /// @brief forward_row(order[q]) for q = begin .. end - 1 (order null: q itself).
   void forward_rows(const Index* order, Index begin, Index end, Scalar* w) const {
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-    if (wide) return forward_rows_avx2(*this, order, begin, end, w);
+#ifdef MASSSPRING_HAVE_SIMD_PATH
+    if (simd) return forward_rows_avx2(*this, order, begin, end, w);
 #endif
     for (Index q = begin; q < end; ++q) forward_row(order ? order[q] : q, w);
   }
 
   /// @brief backward_row(order[q]) for q = end - 1 down to begin (order null: q itself).
   void backward_rows(const Index* order, Index begin, Index end, Scalar* w) const {
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-    if (wide) return backward_rows_avx2(*this, order, begin, end, w);
+#ifdef MASSSPRING_HAVE_SIMD_PATH
+    if (simd) return backward_rows_avx2(*this, order, begin, end, w);
 #endif
     for (Index q = end - 1; q >= begin; --q) backward_row(order ? order[q] : q, w);
   }
@@ -191,7 +191,7 @@ struct LowerFactorRows {
   std::vector<int> schedule, part_start;  // see LowerFactor::schedule; empty: none
 
   /// False: view() never selects the AVX2 rows (for comparisons; default true).
-  bool wide = true;
+  bool simd = true;
 
   /// @brief Splits the rows over `parts` threads (>= 2) along the elimination tree of L (column
   /// j's parent is the row of its first off-diagonal entry): the tree is opened from its roots,
@@ -286,8 +286,8 @@ struct LowerFactorRows {
     LowerFactor<Scalar, int> v{
         n,           col_outer, col_inner, col_value, inv_diag.data(), outer.data(), inner.data(),
         value.data()};
-#ifdef MASSSPRING_HAVE_AVX2_PATH
-    v.wide = wide && cpu_has_avx2_fma();
+#ifdef MASSSPRING_HAVE_SIMD_PATH
+    v.simd = simd && cpu_has_avx2_fma();
 #endif
     if (!part_start.empty()) {
       v.schedule = schedule.data();

@@ -3,7 +3,7 @@
 /// @brief The AVX2 + FMA rows of detail::LowerFactor's substitutions (storage/lower_factor.hpp),
 /// and detail::Row3, a row of three values in one vector register, which a right-hand-side row
 /// source may use to give its rows to the AVX2 forward substitution (LowerFactor::forward_rows).
-/// Compiled only where detail/simd.hpp defines MASSSPRING_HAVE_AVX2_PATH.
+/// Compiled only where detail/simd.hpp defines MASSSPRING_HAVE_SIMD_PATH.
 
 #include <cstddef>
 
@@ -11,7 +11,7 @@
 
 namespace massspring::detail {
 
-#ifdef MASSSPRING_HAVE_AVX2_PATH
+#ifdef MASSSPRING_HAVE_SIMD_PATH
 // The AVX2 + FMA rows: the same sums as LowerFactor::forward_row and backward_row, over four
 // accumulator sets (entries 4k, 4k + 1, 4k + 2, 4k + 3; the last count % 4 entries go to the
 // first), each holding a row of w (three values) in one register whose fourth lane is zero (256

@@ -21,7 +21,7 @@
 
 namespace massspring {
 
-/// @brief Sparse Cholesky factorisation P Q P^T = L L^T (Eigen::SimplicialLLT with a fill-reducing
+/// @brief Sparse Cholesky factorization P Q P^T = L L^T (Eigen::SimplicialLLT with a fill-reducing
 /// ordering, AMD by default), solving for #rows by 3 right-hand sides.
 ///
 /// Eigen's own `SimplicialLLT::solve` walks the factor once per column of the right-hand side and
@@ -34,7 +34,7 @@ namespace massspring {
 ///
 /// The elimination order is the Ordering's (Eigen's AMD by default) or one given to compute()
 /// (e.g. nested_dissection(), storage/nested_dissection.hpp); either way Q is permuted here and
-/// Eigen's SimplicialLLT factorises the result in its natural order.
+/// Eigen's SimplicialLLT factorizes the result in its natural order.
 ///
 /// @tparam Ordering_ an Eigen ordering (Eigen::AMDOrdering<int>, Eigen::COLAMDOrdering<int>,
 /// Eigen::NaturalOrdering<int>, Eigen::MetisOrdering<int>)
@@ -44,7 +44,7 @@ class SparseCholesky {
   using Scalar = Scalar_;
   using Ordering = Ordering_;
   using Matrix = Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int>;
-  /// @brief The factorisation of P Q P^T (already permuted: natural order).
+  /// @brief The factorization of P Q P^T (already permuted: natural order).
   using Factorization = Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::NaturalOrdering<int>>;
 
   /// @brief The elimination order the Ordering gives Q (order[k]: Q's row eliminated k-th), as
@@ -63,7 +63,7 @@ class SparseCholesky {
     return order;
   }
 
-  /// @brief Symbolic analysis (ordering, pattern) and numeric factorisation of Q (lower triangle
+  /// @brief Symbolic analysis (ordering, pattern) and numeric factorization of Q (lower triangle
   /// read), in the Ordering's order. Allocates; call it once per change of Q.
   /// @return false when Q is not numerically positive definite.
   bool compute(const Matrix& q) { return compute(q, ordering_of(q)); }
@@ -95,7 +95,7 @@ class SparseCholesky {
 
   /// @brief True after a successful compute().
   [[nodiscard]] bool ok() const { return ok_; }
-  /// @brief Order of the factorised matrix.
+  /// @brief Order of the factorized matrix.
   [[nodiscard]] Eigen::Index rows() const { return work_.rows(); }
   /// @brief Stored entries of the factor L (diagonal included).
   [[nodiscard]] Eigen::Index factor_nonzeros() const { return factor().nonZeros(); }
@@ -108,7 +108,7 @@ class SparseCholesky {
   }
   /// @brief The factor L of P Q P^T (column-compressed, lower, diagonal first in each column).
   [[nodiscard]] const Matrix& factor() const { return llt_.matrixL().nestedExpression(); }
-  /// @brief The underlying Eigen factorisation, of P Q P^T (permutation() gives P).
+  /// @brief The underlying Eigen factorization, of P Q P^T (permutation() gives P).
   [[nodiscard]] const Factorization& factorization() const { return llt_; }
   /// @brief Row i of Q's unknowns is row permutation()[i] of the factor's order.
   [[nodiscard]] const Eigen::VectorXi& permutation() const { return perm_; }
@@ -150,10 +150,10 @@ class SparseCholesky {
   [[nodiscard]] int threads() const { return threads_; }
 
   /// @brief Allow the AVX2 + FMA substitution (default true; used when the CPU has AVX2 and FMA,
-  /// see detail::LowerFactor::wide). false: the SSE2 one. Takes effect at once.
-  void set_avx2(bool allowed) { rows_.wide = allowed; }
+  /// see detail::LowerFactor::simd). false: the SSE2 one. Takes effect at once.
+  void set_simd(bool allowed) { rows_.simd = allowed; }
   /// @brief True when solves use the AVX2 + FMA substitution (allowed, and the CPU has it).
-  [[nodiscard]] bool avx2() const { return lower().wide; }
+  [[nodiscard]] bool simd() const { return lower().simd; }
 
   /// @brief L and its inverse diagonal, for substitutions fused with other work (see
   /// detail::LowerFactor). Valid until the next compute().

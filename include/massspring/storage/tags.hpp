@@ -2,14 +2,14 @@
 /// @file
 /// @brief Storage policies: empty tags that choose the matrix and Cholesky types of a system.
 ///
-/// `MassSpringSystem<Scalar, Dense>` keeps its matrices as dense Eigen matrices and factorises with
+/// `MassSpringSystem<Scalar, Dense>` keeps its matrices as dense Eigen matrices and factorizes with
 /// `Eigen::LLT`; `MassSpringSystem<Scalar, Sparse>` keeps them as `Eigen::SparseMatrix` and
-/// factorises with `Eigen::SimplicialLLT` (AMD ordering). Dense is for small systems (a few hundred
+/// factorizes with `Eigen::SimplicialLLT` (AMD ordering). Dense is for small systems (a few hundred
 /// points) and as an independent check of Sparse; Sparse is the default choice.
 
 namespace massspring {
 
-/// @brief Dense storage: `Eigen::Matrix` and `Eigen::LLT`. Memory and factorisation grow as n^2,
+/// @brief Dense storage: `Eigen::Matrix` and `Eigen::LLT`. Memory and factorization grow as n^2,
 /// n^3.
 struct Dense {};
 /// @brief Sparse storage: `Eigen::SparseMatrix` and `Eigen::SimplicialLLT` with AMD ordering.
@@ -20,7 +20,7 @@ struct Sparse {};
 ///
 /// Each specialisation provides
 /// - `Matrix`: the matrix type;
-/// - `Cholesky`: a factorisation of Q with the members storage/cholesky_concept.hpp lists
+/// - `Cholesky`: a factorization of Q with the members storage/cholesky_concept.hpp lists
 ///   (compute, permutation, solve_in_place, factor_nonzeros), and `solve(b, x)` for #rows by 3
 ///   right-hand sides without allocation;
 /// - `static Matrix from_triplets(rows, cols, triplets)`: duplicates are summed.

@@ -41,9 +41,9 @@ inline std::uint64_t next_revision() {
 /// velocities in m/s. Every setter validates its input and throws massspring::Error naming the
 /// offending point, spring or pin; nothing is changed when it throws.
 ///
-/// The model is what an integrator factorises: masses, stiffness, springs and the pinned set. Each
+/// The model is what an integrator factorizes: masses, stiffness, springs and the pinned set. Each
 /// change of those gives the system a new revision(), and an integrator that sees a new revision
-/// re-factorises at its next step. Rest lengths, pin targets, positions and velocities may change
+/// re-factorizes at its next step. Rest lengths, pin targets, positions and velocities may change
 /// between steps at no such cost.
 ///
 /// @tparam Scalar_  float or double
@@ -296,7 +296,7 @@ class MassSpringSystem {
 
   /// @brief Adds an obstacle (contact::Collider<Scalar>::plane(), sphere(), capsule(), box(),
   /// mesh()) that every integrator keeps the points out of; returns its index in colliders().
-  /// Not a model change: no new revision, no re-factorisation.
+  /// Not a model change: no new revision, no re-factorization.
   int add_collider(contact::Collider<Scalar> collider) {
     return colliders_.add(std::move(collider));
   }

@@ -1,4 +1,4 @@
-// contact/colliders/colliders.hpp through the integrators (issue 22, items 2, 3 and 6): the dynamics of
+// contact/colliders/colliders.hpp through the integrators: the dynamics of
 // contact with obstacles against closed forms and invariants. A particle at rest on a plane stays
 // there; a block on an incline slides with a = g (sin t - mu cos t), or stays when mu > tan t; a
 // dropped particle rebounds to e^2 of its height; a moving plane carries (friction) or pushes
@@ -7,7 +7,7 @@
 // impulse; a point shot at a single triangle does not tunnel; pinned points ignore colliders;
 // a collider's pose advances only with committed steps.
 //
-// Every test runs the integrators the issue names: forward and symplectic Euler, RK4,
+// Every test runs every integrator: forward and symplectic Euler, RK4,
 // BackwardEuler (Linearized and Newton), FastMassSpring (plain, Chebyshev, Anderson); one System
 // type (double, Sparse) keeps the instantiations few.
 #include <doctest/doctest.h>
@@ -266,7 +266,7 @@ TEST_CASE("colliders: a particle at rest on a frictionless plane stays there (Fa
 // first-order in position: s_N = a h^2 N (N + 1) / 2 for symplectic and backward Euler and the
 // local-global solver (x advances by the new velocity), N (N - 1) / 2 for forward Euler (the old
 // one), N^2 / 2 for RK4. The estimate 2 s_N / T^2 is therefore within a h / T = 0.1% of a at
-// dt = 1e-3, T = 1 s: we check 2 h / T (0.2%), inside the issue's 1%, for every integrator, the
+// dt = 1e-3, T = 1 s: we check 2 h / T (0.2%), inside the 1% asked, for every integrator, the
 // implicit ones included (their first-order error is this same h / T), and v_N to 1e-9 a T.
 TEST_CASE("colliders: a block on an incline slides with a = g (sin t - mu cos t)") {
   const double theta = 30 * M_PI / 180, mu = 0.2, dt = 1e-3, T = 1;
@@ -524,7 +524,7 @@ void run_drape(Kind kind, double dt, int steps) {
 // The explicit integrators at their stable time step (stable_time_step at the start, safety 0.5),
 // 10^4 steps. The implicit ones at dt = 4 ms and fewer steps, to keep each case under a second in
 // Release: 2500 for FastMassSpring (10 iterations a step; 10^4 took 2.5 s), 1000 for BackwardEuler
-// (a factorisation per Newton iteration; 2000 took 2.7 s in Newton mode). 4 s and 10 s of
+// (a factorization per Newton iteration; 2000 took 2.7 s in Newton mode). 4 s and 10 s of
 // simulated time: the cloth has landed on the sphere and the floor (checked) and settled.
 TEST_CASE("colliders: no point of a drape is ever inside the sphere or the floor (explicit)") {
   const Drape d = make_drape();
@@ -558,7 +558,7 @@ TEST_CASE("colliders: no point of a drape is ever inside the sphere or the floor
 // colliders of every shape, moving (velocity and angular velocity) and still: the drape with a
 // capsule, a box and a one-triangle mesh added, 20 steps counted by the replaced operator new
 // (any Eigen heap allocation throws). BackwardEuler is left out: with Sparse storage (this file's)
-// Eigen's numeric factorisation allocates in every step, colliders or not (docs/integrators.md);
+// Eigen's numeric factorization allocates in every step, colliders or not (docs/integrators.md);
 // its response is the same ColliderSet code the others run.
 TEST_CASE("colliders: step() allocates nothing after the first, every shape") {
   contact::Triangles f(1, 3);

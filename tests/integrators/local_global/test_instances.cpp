@@ -2,7 +2,7 @@
 // declares. The test program defines MASSSPRING_EXTERN_TEMPLATES (tests/CMakeLists.txt), so every
 // other test file steps the four common systems through the instantiations in this file, which
 // compiles on its own (no unity group). Here they are checked against an implicit instantiation of
-// the same solver: a factorisation type the declarations do not name (SparseCholesky under another
+// the same solver: a factorization type the declarations do not name (SparseCholesky under another
 // name) makes FastMassSpring instantiate in this file, from the same header and flags, and both
 // must give the same trajectory bit for bit. That a consumer with the macro instantiates neither
 // precompute() nor step() is checked on its object file by the test
@@ -17,7 +17,7 @@
 
 namespace {
 
-// The default factorisation of Sparse storage, as a type of its own.
+// The default factorization of Sparse storage, as a type of its own.
 template <class Scalar>
 struct RenamedCholesky : massspring::SparseCholesky<Scalar> {};
 

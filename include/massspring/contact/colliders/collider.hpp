@@ -183,7 +183,7 @@ class Collider {
 
   /// @brief Moves the collider to the pose (R, t): R a rotation (orthonormal, det +1, to 1e-6), t
   /// the reference point's new position [m]; a box's R includes its orientation (the pose maps
-  /// its axes). Takes effect at once; no re-factorisation is ever needed. Friction sees the
+  /// its axes). Takes effect at once; no re-factorization is ever needed. Friction sees the
   /// collider's velocity (set_velocity), not the jump from one pose to the next.
   Collider& set_pose(const M3& rotation, const V3& translation) {
     check_finite(translation, "pose: translation");

@@ -3,11 +3,11 @@
 /// @brief Distance from a point to a plane (a half-plane's boundary line in the 2D scenes), with
 /// the closest point and the normal.
 ///
-/// The course's particle-half-plane test (FOSSSim, Theme 2, SimpleCollisionHandler::
+/// FOSSSim's particle-half-plane test (Theme 2, SimpleCollisionHandler::
 /// detectParticleHalfplane, PenaltyForce::addParticleHalfplaneGradEToTotal): a plane is a point
 /// p and a normal m, not necessarily of unit length;
 /// \f$ n = \frac{(p - x)\cdot m}{m\cdot m}\, m \f$ is the shortest vector from x to the plane.
-/// Its length is unsigned: the course's tests treat the boundary as a thick line, from either side.
+/// Its length is unsigned: FOSSSim's tests treat the boundary as a thick line, from either side.
 
 #include <Eigen/Core>
 #include <cmath>

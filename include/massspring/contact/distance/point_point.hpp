@@ -2,7 +2,7 @@
 /// @file
 /// @brief Distance between two points, with the closest point and the normal.
 ///
-/// The course's particle-particle test (FOSSSim, Theme 2, SimpleCollisionHandler::
+/// FOSSSim's particle-particle test (Theme 2, SimpleCollisionHandler::
 /// detectParticleParticle): n = x_2 - x_1, in contact when |n| < r_1 + r_2. 3-vectors throughout
 /// (the 2D scenes live in z = 0), so the 3D contact code uses the same functions.
 

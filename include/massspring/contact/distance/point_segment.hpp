@@ -3,7 +3,7 @@
 /// @brief Distance from a point to a segment, with the closest point, its parameter and the
 /// normal.
 ///
-/// The course's particle-edge test (FOSSSim, Theme 2, SimpleCollisionHandler::detectParticleEdge,
+/// FOSSSim's particle-edge test (Theme 2, SimpleCollisionHandler::detectParticleEdge,
 /// PenaltyForce::addParticleEdgeGradEToTotal): \f$ \alpha = \mathrm{clamp}_{[0,1]}
 /// \frac{(x_1 - x_2)\cdot(x_3 - x_2)}{|x_3 - x_2|^2} \f$, closest point
 /// \f$ x_\alpha = x_2 + \alpha (x_3 - x_2) \f$, \f$ n = x_\alpha - x_1 \f$.

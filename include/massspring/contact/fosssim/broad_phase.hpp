@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief BroadPhase: the candidate pairs a narrow phase tests (particle-particle, particle-edge,
-/// particle-plane), either every pair (the course's AllPairsDetector) or a sorted uniform grid
+/// particle-plane), either every pair (FOSSSim's AllPairsDetector) or a sorted uniform grid
 /// (our `contest` detector): O(m log m + k) per call for m (cell, box) entries and k candidates,
 /// m = O(n) when boxes are about the median size.
 ///
@@ -11,7 +11,7 @@
 /// overlap at some time of the step, or penalty distance within `margin`) is a candidate. The
 /// narrow phase decides; the two kinds therefore give the same contacts.
 ///
-/// Visiting order (the course's AllPairsDetector::performCollisionDetection): for each particle i
+/// Visiting order (FOSSSim's AllPairsDetector::performCollisionDetection): for each particle i
 /// in turn, the pairs (i, j) with j > i, then the edges e not incident to i, then every plane h.
 /// The impulse responses depend on this order (each sees the velocities the previous ones left);
 /// `ordered = false` skips the sort where the order does not matter (sums of forces).
@@ -58,7 +58,7 @@ class BroadPhase {
   /// @param[in] qs, qe  #particles by 3 positions at the start and at the end of the motion [m]
   ///                    (pass the same array twice for a static test)
   /// @param[in] margin  distance added to every radius [m], >= 0 (a penalty force's thickness)
-  /// @param[in] ordered visit in the course's order (see the file's documentation)
+  /// @param[in] ordered visit in FOSSSim's order (see the file's documentation)
   template <class Visitor>
   void visit(const ContactGeometry<Scalar>& g, const Points<Scalar>& qs, const Points<Scalar>& qe,
              Scalar margin, Visitor&& visit, bool ordered = true) {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief ContinuousTimeCollisionHandler: the course's "continuous-time" response (FOSSSim,
+/// @brief ContinuousTimeCollisionHandler: FOSSSim's "continuous-time" response (FOSSSim,
 /// Theme 2, ContinuousTimeCollisionHandler): each pair that overlaps and approaches at some time
 /// of the step, assuming straight-line motion from the start-of-step positions qs to the
 /// end-of-step positions qe (contact/fosssim/time_of_impact.hpp), gets an impulse computed from the

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief ContactGeometry: what collides in the course's 2D model (FOSSSim, Theme 2): particles
+/// @brief ContactGeometry: what collides in FOSSSim's 2D model (Theme 2): particles
 /// with radii (discs, spheres in 3D), edges with radii (capsules around segments) and planes
 /// (half-planes in 2D).
 
@@ -19,11 +19,11 @@ namespace massspring::contact {
 /// holds the rest: particle radii, edges, edge radii, planes.
 template <class Scalar>
 struct ContactGeometry {
-  /// @brief #particles radii [m], each >= 0 (the course's default is 0.1).
+  /// @brief #particles radii [m], each >= 0 (FOSSSim's default is 0.1).
   Vector<Scalar> radii;
   /// @brief #edges by 2 particle indices: every collision edge (with or without a spring).
   Edges edges = Edges(0, 2);
-  /// @brief #edges radii [m], each >= 0 (the course's default is 0.015).
+  /// @brief #edges radii [m], each >= 0 (FOSSSim's default is 0.015).
   Vector<Scalar> edge_radii;
   /// @brief The planes (half-planes), in file order.
   std::vector<Plane<Scalar>> planes;

@@ -1,13 +1,14 @@
 #pragma once
 /// @file
-/// @brief HybridCollisionHandler: the course's "hybrid" response (FOSSSim, Theme 2,
+/// @brief HybridCollisionHandler: FOSSSim's "hybrid" response (Theme 2,
 /// HybridCollisionHandler::handleCollisions; Bridson, Fedkiw and Anderson 2002):
 /// 1. up to `maxiters` rounds: detect every continuous-time collision between the start-of-step
-///    positions qs and the current end-of-step positions qe (contact/fosssim/time_of_impact.hpp), then
-///    apply all their impulses at once (each computed from the same qe; contact/fosssim/impulse.hpp);
+///    positions qs and the current end-of-step positions qe (contact/fosssim/time_of_impact.hpp),
+///    then apply all their impulses at once (each computed from the same qe;
+///    contact/fosssim/impulse.hpp);
 /// 2. if collisions remain, rigid impact zones: the colliding particles' groups (merged when they
-///    share a particle) are moved rigidly from qs (contact/response/impact_zones.hpp), collisions are
-///    detected again, new ones grow the zones, until the zones stop changing.
+///    share a particle) are moved rigidly from qs (contact/response/impact_zones.hpp), collisions
+///    are detected again, new ones grow the zones, until the zones stop changing.
 /// The scene's penalty force (k, thickness) is a separate force term (contact/fosssim/penalty.hpp).
 
 #include <array>

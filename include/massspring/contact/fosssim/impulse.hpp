@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// @brief The course's impulse responses (FOSSSim, Theme 2, SimpleCollisionHandler::respond*,
+/// @brief FOSSSim's impulse responses (Theme 2, SimpleCollisionHandler::respond*,
 /// ContinuousTimeCollisionHandler::respond*, HybridCollisionHandler::respond*), written with
 /// inverse masses w (0 for a fixed particle: infinite mass).
 ///
@@ -8,7 +8,7 @@
 /// response reads and e the coefficient of restitution:
 /// - particle-particle: \f$ \lambda = (1+e) \frac{(u_j - u_i)\cdot\hat n}{w_i + w_j} \f$,
 ///   \f$ \Delta v_i = w_i \lambda \hat n,\ \Delta v_j = -w_j \lambda \hat n \f$;
-///   the course's \f$ \frac{2\frac{1+e}{2}(u_2-u_1)\cdot\hat n}{1 + m_1/m_2} \f$ times w_1 / w_1.
+///   FOSSSim's \f$ \frac{2\frac{1+e}{2}(u_2-u_1)\cdot\hat n}{1 + m_1/m_2} \f$ times w_1 / w_1.
 /// - particle-edge at parameter alpha: \f$ u_\alpha = (1-\alpha) u_2 + \alpha u_3 \f$,
 ///   \f$ \lambda = (1+e)\frac{(u_\alpha - u_1)\cdot\hat n}{w_1 + (1-\alpha)^2 w_2 + \alpha^2 w_3}
 ///   \f$, \f$ \Delta v_1 = w_1\lambda\hat n \f$, \f$ \Delta v_2 = -(1-\alpha) w_2 \lambda\hat n
@@ -16,7 +16,7 @@
 ///   momentum too (the impulses act along n^ through the contact point).
 /// - particle-plane: \f$ \Delta v = -(1+e)(u\cdot\hat n)\hat n \f$ (the plane does not move).
 /// The relative normal velocity after the impulse is -e times the one before.
-/// The responses add dt Delta v to the positions too where the course does (continuous time,
+/// The responses add dt Delta v to the positions too where FOSSSim does (continuous time,
 /// hybrid: as if the impulse had acted at the start of the step).
 
 #include <Eigen/Core>

@@ -1,18 +1,18 @@
 #pragma once
 /// @file
-/// @brief PenaltyForce: the course's penalty response (FOSSSim, Theme 2, PenaltyForce), a force
+/// @brief PenaltyForce: FOSSSim's penalty response (Theme 2, PenaltyForce), a force
 /// term like any other, so every integrator uses it.
 ///
-/// For each candidate pair (contact/fosssim/broad_phase.hpp) with n the shortest vector from the particle
-/// to the other primitive (contact/distance/point_point.hpp, point_segment.hpp, point_plane.hpp) and
-/// s = r_1 + r_2 + thickness (particle-particle), r + r_e + thickness (particle-edge),
-/// r + thickness (particle-plane): when \f$ 0 < |n| < s \f$ (the course skips |n| < 1e-10),
-/// \f[ E = \frac{k}{2} (s - |n|)^2, \qquad F_1 = k (|n| - s)\,\hat n \f]
-/// on the particle (pushed away), and \f$ -F_1 \f$ on the other particle, \f$ -(1-\alpha) F_1,
+/// For each candidate pair (contact/fosssim/broad_phase.hpp) with n the shortest vector from the
+/// particle to the other primitive (contact/distance/point_point.hpp, point_segment.hpp,
+/// point_plane.hpp) and s = r_1 + r_2 + thickness (particle-particle), r + r_e + thickness
+/// (particle-edge), r + thickness (particle-plane): when \f$ 0 < |n| < s \f$ (FOSSSim skips |n| <
+/// 1e-10), \f[ E = \frac{k}{2} (s - |n|)^2, \qquad F_1 = k (|n| - s)\,\hat n \f] on the particle
+/// (pushed away), and \f$ -F_1 \f$ on the other particle, \f$ -(1-\alpha) F_1,
 /// -\alpha F_1 \f$ on an edge's ends (a plane takes the reaction). F = -dE/dx exactly (alpha's
 /// own variation does not change |n| to first order). Units: k [N/m], lengths [m], E [J], F [N].
 ///
-/// No dF/dx: the course's PenaltyForce has none ("implicit integration of penalty forces is not
+/// No dF/dx: FOSSSim's PenaltyForce has none ("implicit integration of penalty forces is not
 /// supported"), and the pairs in contact change from step to step, while the implicit
 /// integrators need a fixed pattern of Jacobian entries (forces/force_term.hpp); BackwardEuler
 /// treats the term explicitly.
@@ -22,10 +22,10 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/fosssim/broad_phase.hpp"
-#include "massspring/contact/fosssim/geometry.hpp"
 #include "massspring/contact/distance/point_plane.hpp"
 #include "massspring/contact/distance/point_segment.hpp"
+#include "massspring/contact/fosssim/broad_phase.hpp"
+#include "massspring/contact/fosssim/geometry.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
@@ -100,7 +100,7 @@ class PenaltyForce {
   void visit(const Points<Scalar>& x, Emit&& emit) const {
     if (!(k_ > 0)) return;
     const ContactGeometry<Scalar>& g = geometry_;
-    constexpr Scalar tiny = Scalar(1e-10);  // the course's cut-off: no direction below it
+    constexpr Scalar tiny = Scalar(1e-10);  // FOSSSim's cut-off: no direction below it
     broad_phase_.visit(
         g, x, x, thickness_,
         [&](PairKind kind, int i, int j) {

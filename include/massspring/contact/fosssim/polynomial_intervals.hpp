@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief first_time_all_positive(): the first time t >= 0 at which every one of a few
-/// polynomials is >= 0 and > 0 just after t (the course's PolynomialIntervalSolver::
+/// polynomials is >= 0 and > 0 just after t (FOSSSim's PolynomialIntervalSolver::
 /// findFirstIntersectionTime, FOSSSim Theme 2, ContinuousTimeUtilities), searched on [0, t_max].
 ///
 /// Method: the real roots of each polynomial in (0, t_max) split [0, t_max] into pieces on which

@@ -1,22 +1,24 @@
 #pragma once
 /// @file
-/// @brief SimpleCollisionHandler: the course's "simple" response (FOSSSim, Theme 2,
+/// @brief SimpleCollisionHandler: FOSSSim's "simple" response (Theme 2,
 /// SimpleCollisionHandler): at the end of the step, every pair that overlaps (distance below the
-/// sum of radii) and approaches gets an impulse (contact/fosssim/impulse.hpp), one pair after the other in
-/// the broad phase's order, each seeing the velocities the previous ones left. Positions are not
-/// changed. Misses a fast particle that crosses a primitive within one step (see
+/// sum of radii) and approaches gets an impulse (contact/fosssim/impulse.hpp), one pair after the
+/// other in the broad phase's order, each seeing the velocities the previous ones left. Positions
+/// are not changed. Misses a fast particle that crosses a primitive within one step (see
 /// ContinuousTimeCollisionHandler).
 ///
 /// Detection at the end-of-step positions x and velocities v (3-vectors):
 /// - particle-particle: n = x_j - x_i, \f$ |n| < r_i + r_j \f$ and \f$ (v_i - v_j)\cdot n > 0 \f$;
-/// - particle-edge: n = x_alpha - x_i (contact/distance/point_segment.hpp), \f$ |n| < r_i + r_e \f$ and
+/// - particle-edge: n = x_alpha - x_i (contact/distance/point_segment.hpp), \f$ |n| < r_i + r_e \f$
+/// and
 ///   \f$ (v_i - v_\alpha)\cdot n > 0 \f$, \f$ v_\alpha = v_a + \alpha (v_b - v_a) \f$;
-/// - particle-plane: n from contact/distance/point_plane.hpp, \f$ |n| < r_i \f$ and \f$ v_i\cdot n > 0 \f$.
+/// - particle-plane: n from contact/distance/point_plane.hpp, \f$ |n| < r_i \f$ and \f$ v_i\cdot n
+/// > 0 \f$.
 
-#include "massspring/contact/fosssim/detail/impulse_handler.hpp"
-#include "massspring/contact/fosssim/impulse.hpp"
 #include "massspring/contact/distance/point_plane.hpp"
 #include "massspring/contact/distance/point_segment.hpp"
+#include "massspring/contact/fosssim/detail/impulse_handler.hpp"
+#include "massspring/contact/fosssim/impulse.hpp"
 
 namespace massspring::contact {
 

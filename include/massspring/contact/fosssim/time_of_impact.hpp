@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// @brief Continuous-time detection: the first time in [0, 1] of a step at which two primitives
-/// moving on straight lines overlap (distance below the sum of radii) and approach, from the
-/// course's polynomial conditions (FOSSSim, Theme 2, ContinuousTimeCollisionHandler::detect* and
+/// moving on straight lines overlap (distance below the sum of radii) and approach, from
+/// FOSSSim's polynomial conditions (Theme 2, ContinuousTimeCollisionHandler::detect* and
 /// HybridCollisionHandler::detect*). Positions at time t are x(t) = x + t dx, dx the displacement
 /// over the step; every condition is "a polynomial in t is > 0", and the time of impact is the
 /// first t where all of a pair's polynomials are (contact/fosssim/polynomial_intervals.hpp).
@@ -14,7 +14,7 @@
 ///   g = |B|^2 (quadratics), u = dx1 - dx2, w = dx3 - dx2: distance to the line
 ///   \f$ a^2 - d g + s^2 g > 0 \f$ (quartic), alpha >= 0: \f$ a > 0 \f$, alpha <= 1:
 ///   \f$ (x_1 - x_3)\cdot(x_2 - x_3) > 0 \f$ (quadratics), approach of the particle and the edge's
-///   closest point \f$ (g u - a w)\cdot(a B - g A) > 0 \f$ (the course's quintic: the normal
+///   closest point \f$ (g u - a w)\cdot(a B - g A) > 0 \f$ (FOSSSim's quintic: the normal
 ///   relative velocity times g^2).
 /// - particle 1, plane (p, m), s = r1: \f$ s^2 |m|^2 - ((p - x_1(t))\cdot m)^2 > 0 \f$,
 ///   \f$ (dx_1\cdot m)\,((p - x_1(t))\cdot m) > 0 \f$.

@@ -5,8 +5,8 @@
 /// particles that keep colliding, each then moved as one rigid body over the step.
 ///
 /// ImpactZones holds the zones as a partition (union-find) of the particles that are in one;
-/// grow() adds a collision's particles as a zone and merges zones that share a particle, as the
-/// course's growImpactZones does, and reports whether the zones changed (the course's loop ends
+/// grow() adds a collision's particles as a zone and merges zones that share a particle, as
+/// FOSSSim's growImpactZones does, and reports whether the zones changed (FOSSSim's loop ends
 /// when they do not). rigid_zone_motion() is performFailsafe in 3D: see its documentation.
 
 #include <Eigen/Core>
@@ -89,14 +89,14 @@ class ImpactZones {
   std::vector<char> in_zone_, plane_;
 };
 
-/// @brief Moves a zone rigidly over the step (the course's performFailsafe, in 3D).
+/// @brief Moves a zone rigidly over the step (FOSSSim's performFailsafe, in 3D).
 ///
 /// With masses m_k, start positions qs, displacements dx_k = qe_k - qs_k: centre of mass c,
 /// mean displacement p = sum m dx / M, r_k = qs_k - c, angular momentum
 /// \f$ L = \sum m_k r_k \times (dx_k - p) \f$, inertia \f$ I = \sum m_k (|r_k|^2 1 - r_k r_k^T)
 /// \f$, rotation vector \f$ \omega = I^+ L \f$ (pseudo-inverse: collinear zones; 0 for a single
-/// particle, where the course divides 0 by 0); then qe_k = c + p + R(omega) r_k and
-/// v_k = (qe_k - qs_k) / dt. In the plane z = 0 this is the course's cm + p + cos(w) r +
+/// particle, where FOSSSim divides 0 by 0); then qe_k = c + p + R(omega) r_k and
+/// v_k = (qe_k - qs_k) / dt. In the plane z = 0 this is FOSSSim's cm + p + cos(w) r +
 /// sin(w) r_perp with w = L_z / I_zz. A zone with a fixed particle or a plane stays where it
 /// started, at rest.
 /// @param[in] members  the zone's particles

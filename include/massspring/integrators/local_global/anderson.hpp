@@ -121,11 +121,11 @@ class Anderson {
   using Buffer = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
   // theta = (dF^T dF + eps I)^-1 dF^T f, eps = 1e-12 of the mean diagonal, by a Cholesky
-  // factorisation of the count x count matrix (count <= kMaxWindow) held in place, written out:
-  // Eigen's LLT does the same without allocating, but its instantiation (the blocked
-  // factorisation with triangular solves and rank updates, never used at this size) took about a
-  // tenth of the compile time of a translation unit that steps a solver (issue note). False when
-  // the matrix is not numerically positive definite or theta is not finite.
+  // factorization of the count x count matrix (count <= kMaxWindow) held in place, written out:
+  // Eigen's LLT does the same without allocating, but instantiating it (the blocked factorization
+  // with triangular solves and rank updates, never used at this size) is a large share of the
+  // compile time of a translation unit that steps a solver. False when the matrix is not
+  // numerically positive definite or theta is not finite.
   bool solve_normal_equations(int count) {
     double trace = 0;
     for (int j = 0; j < count; ++j) trace += gram_(j, j);

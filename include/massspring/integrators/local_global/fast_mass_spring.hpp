@@ -54,9 +54,9 @@ namespace massspring {
 /// lose the monotone descent and the tolerance test. For implicit treatment of such terms use
 /// BackwardEuler.
 ///
-/// precompute() factorises Q once (n x n, three right-hand sides). step() re-factorises only when
+/// precompute() factorizes Q once (n x n, three right-hand sides). step() re-factorizes only when
 /// the system's revision(), the time step or the pin options changed; it allocates nothing
-/// otherwise, and never throws for a numerical failure: a failed re-factorisation or a result that
+/// otherwise, and never throws for a numerical failure: a failed re-factorization or a result that
 /// is not finite is reported in the StepReport, the system keeping its state. A zero-length
 /// spring keeps the direction it had at the end of the previous step.
 ///
@@ -65,10 +65,10 @@ namespace massspring {
 /// springs see where contact leaves the points; the end-of-step state then gets the same response
 /// as in every other integrator (position, then velocity: restitution and friction). A collision
 /// handler on the system (MassSpringSystem::set_collision_handler) is applied to the end-of-step
-/// state only, as the explicit integrators apply it. Neither ever re-factorises Q.
+/// state only, as the explicit integrators apply it. Neither ever re-factorizes Q.
 ///
 /// @tparam System a MassSpringSystem<Scalar, Storage>
-/// @tparam Cholesky_ the factorisation of Q: by default the Storage's (SparseCholesky or
+/// @tparam Cholesky_ the factorization of Q: by default the Storage's (SparseCholesky or
 /// DenseCholesky); any type with the members storage/cholesky_concept.hpp requires works (e.g.
 /// CholmodCholesky from massspring/storage/cholmod.hpp).
 template <class System, class Cholesky_ = typename System::Traits::Cholesky>
@@ -90,30 +90,30 @@ class FastMassSpring {
   FastMassSpring() = default;
   explicit FastMassSpring(const Options& opts) : options(opts) {}
 
-  /// @brief Builds and factorises Q for this system and time step dt [s] (finite, > 0).
+  /// @brief Builds and factorizes Q for this system and time step dt [s] (finite, > 0).
   /// Allocates every buffer step() needs. Throws massspring::Error on bad input or when Q cannot
-  /// be factorised.
+  /// be factorized.
   void precompute(const System& system, Scalar dt);
 
   /// @brief Advances the system by one time step dt. Returns what happened: when Q had to be
-  /// factorised again and could not be (report.factorization_failed), or when the result is not
+  /// factorized again and could not be (report.factorization_failed), or when the result is not
   /// finite (report.finite false), the system keeps its previous state. Throws massspring::Error
   /// only for invalid options, or when precompute() was not called.
   StepReport step(System& system);
 
   /// @brief The time step of the last precompute() [s].
   [[nodiscard]] Scalar dt() const { return dt_; }
-  /// @brief Q as factorised: over the free points with Exact pins (rows in free_points() order),
+  /// @brief Q as factorized: over the free points with Exact pins (rows in free_points() order),
   /// over every point with Penalty pins.
   [[nodiscard]] const Matrix& system_matrix() const { return q_; }
   /// @brief Points whose positions are unknowns of the global step, in the order of Q's rows.
   [[nodiscard]] const std::vector<int>& free_points() const { return reduced_.free; }
   /// @brief Stored entries of the Cholesky factor of Q.
   [[nodiscard]] Eigen::Index factor_nonzeros() const { return llt_.factor_nonzeros(); }
-  /// @brief The factorisation of Q.
+  /// @brief The factorization of Q.
   [[nodiscard]] const Cholesky& factorization() const { return llt_; }
   /// @brief The rho Chebyshev uses: options.chebyshev_rho when > 0, else the solver's estimate
-  /// (0 until the first Chebyshev step after a factorisation has estimated it).
+  /// (0 until the first Chebyshev step after a factorization has estimated it).
   [[nodiscard]] Scalar chebyshev_rho() const {
     return options.chebyshev_rho > 0 ? options.chebyshev_rho : rho_estimate_;
   }
@@ -133,32 +133,23 @@ class FastMassSpring {
     double energy(const Scalar* x) { return solver->energy_at(x); }
   };
 
-  bool simd_allowed() const {
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
-#endif
-    return options.simd && options.avx2;  // avx2: the deprecated name of simd
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
-  }
+  bool simd_allowed() const { return options.simd; }
 
   void check_options() const {
     massspring::check_options(options, cholesky_has_ordered_compute<Cholesky, Matrix>::value,
                               cholesky_has_threads<Cholesky>::value);
   }
 
-  std::string factorisation_message() const {
+  std::string factorization_message() const {
     const bool exact = pins_ == PinMode::Exact;
     return detail::message("FastMassSpring: Q = A^T K A + M / dt^2", exact ? "" : " + w C^T C",
                            " is not numerically positive definite (dt = ", dt_,
                            exact ? "" : detail::message(", penalty weight = ", weight_), ")");
   }
 
-  // Factorises Q in the order options.ordering asks for (fill_ordering.hpp).
-  bool factorise(const System& system) {
-    return local_global::factorise_in_order(llt_, q_, options.ordering, system.rest_positions(),
+  // Factorizes Q in the order options.ordering asks for (fill_ordering.hpp).
+  bool factorize(const System& system) {
+    return local_global::factorize_in_order(llt_, q_, options.ordering, system.rest_positions(),
                                             reduced_.free);
   }
 
@@ -168,13 +159,13 @@ class FastMassSpring {
     if constexpr (cholesky_has_threads<Cholesky>::value) {
       if (llt_.threads() != options.threads) llt_.set_threads(options.threads);
     }
-    if constexpr (cholesky_has_simd<Cholesky>::value) llt_.set_avx2(simd_allowed());
+    if constexpr (cholesky_has_simd<Cholesky>::value) llt_.set_simd(simd_allowed());
   }
 
   // ---- precompute -------------------------------------------------------------------------------
 
   // Q, its factor, the packed springs and every buffer step() uses. The only place that
-  // allocates. False (the solver left to build again) when Q cannot be factorised.
+  // allocates. False (the solver left to build again) when Q cannot be factorized.
   bool build(const System& system) {
     factored_ = false;
     pins_ = options.pins;
@@ -205,7 +196,7 @@ class FastMassSpring {
     term_force_.setZero(other_terms_ ? n : 0, 3);
     apply_threads();
     ordering_ = options.ordering;
-    if (!factorise(system)) return false;
+    if (!factorize(system)) return false;
 
     reduced_.renumber(system, llt_.permutation(), exact);
     const int nx = reduced_.nx;
@@ -241,7 +232,7 @@ class FastMassSpring {
         if (!term->linear_damping) term->add_force(context, term_force_);
     }
     inertia_.prepare(system, reduced_, dt_, drag_, pins_ == PinMode::Penalty ? weight_ : Scalar(0),
-                     options.external_force, options.gravity, other_terms_ ? &term_force_ : nullptr,
+                     other_terms_ ? &term_force_ : nullptr,
                      options.initial_guess == InitialGuess::Inertial, buffers_[0].data());
     if (pins_ == PinMode::Exact)
       for (Buffer& b : buffers_) restore_pins(b.data());
@@ -371,11 +362,11 @@ class FastMassSpring {
   Scalar dt_ = 0;
   Scalar weight_ = 0;
   Scalar rho_estimate_ = 0;
-  bool rho_estimated_ = false;  // rho_estimate_ holds this factorisation's estimate
+  bool rho_estimated_ = false;  // rho_estimate_ holds this factorization's estimate
   PinMode pins_ = PinMode::Exact;
   FillOrdering ordering_ = FillOrdering::Auto;
   std::uint64_t revision_ = 0;
-  bool factored_ = false;  // the last build() factorised Q
+  bool factored_ = false;  // the last build() factorized Q
   std::size_t rejections_ = 0;
   local_global::ReducedSystem<Scalar> reduced_;
   local_global::PackedSprings<Scalar> springs_;
@@ -399,7 +390,7 @@ void FastMassSpring<System, Cholesky_>::precompute(const System& system, Scalar 
     throw Error(detail::message("FastMassSpring: dt must be finite and > 0, got ", dt));
   check_options();
   dt_ = dt;
-  if (!build(system)) throw Error(factorisation_message());
+  if (!build(system)) throw Error(factorization_message());
 }
 
 template <class System, class Cholesky_>
@@ -428,7 +419,7 @@ StepReport FastMassSpring<System, Cholesky_>::step(System& system) {
       result = run_plain(report);
       break;
     case Acceleration::Chebyshev: {
-      // Estimated once per factorisation (0, "no acceleration", when the trial iterations do
+      // Estimated once per factorization (0, "no acceleration", when the trial iterations do
       // not give a rate in (0, 1), e.g. when they converge to rounding).
       if (!(options.chebyshev_rho > 0) && !rho_estimated_) {
         estimate_rho();

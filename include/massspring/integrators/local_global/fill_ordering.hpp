@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// @brief factorise_in_order(): Q's Cholesky factorisation in the elimination order
+/// @brief factorize_in_order(): Q's Cholesky factorization in the elimination order
 /// FastMassSpringOptions::ordering asks for (FillOrdering): the Cholesky type's own, geometric
 /// nested dissection of the rest positions, or (Auto) whichever of the two gives the factor fewer
-/// nonzeros, both counted symbolically before factorising.
+/// nonzeros, both counted symbolically before factorizing.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -15,12 +15,12 @@
 
 namespace massspring::local_global {
 
-/// @brief Factorises q (Q over the unknowns) with llt; row r of q belongs to the point
+/// @brief Factorizes q (Q over the unknowns) with llt; row r of q belongs to the point
 /// free[r], whose rest position (a row of rest_positions [m]) places it for nested dissection.
 /// A Cholesky type without compute(matrix, order) always uses its own order. Returns llt's result
 /// (false: q is not numerically positive definite). Allocates.
 template <class Cholesky, class Matrix, class RestPositions>
-bool factorise_in_order(Cholesky& llt, const Matrix& q, FillOrdering ordering,
+bool factorize_in_order(Cholesky& llt, const Matrix& q, FillOrdering ordering,
                         const RestPositions& rest_positions, const std::vector<int>& free) {
   if constexpr (cholesky_has_ordered_compute<Cholesky, Matrix>::value) {
     if (ordering != FillOrdering::Solver) {

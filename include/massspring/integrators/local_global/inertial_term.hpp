@@ -45,14 +45,12 @@ struct InertialTerm {
   }
 
   /// @brief The step's constants at the system's state, and the starting iterate x0 (the current
-  /// positions, or Y when `inertial_guess`) on the free rows. `external_force` [N] and `gravity`
-  /// [m/s^2] act on every point; `term_force` (may be null) is the force terms' at the step's
-  /// start; `penalty_weight` is w, 0 for exact pins.
+  /// positions, or Y when `inertial_guess`) on the free rows. `term_force` (may be null: no
+  /// force) is the force terms' at the step's start [N]; `penalty_weight` is w, 0 for exact pins.
   template <class System>
   void prepare(const System& system, const ReducedSystem<Scalar>& reduced, Scalar dt, Scalar drag,
-               Scalar penalty_weight, const Vector3<Scalar>& external_force,
-               const Vector3<Scalar>& gravity, const Points<Scalar>* term_force,
-               bool inertial_guess, Scalar* x0) {
+               Scalar penalty_weight, const Points<Scalar>* term_force, bool inertial_guess,
+               Scalar* x0) {
     const auto& x = system.positions();
     const auto& v = system.velocities();
     const Scalar inv_dt2 = Scalar(1) / (dt * dt);
@@ -61,8 +59,8 @@ struct InertialTerm {
     weight = penalty_weight;
     for (int r = 0; r < nr; ++r) {
       const int i = reduced.point[std::size_t(r)];
-      Vector3<Scalar> f = external_force + system.masses()(i) * gravity;
-      if (term_force) f += term_force->row(i).transpose();
+      Vector3<Scalar> f = Vector3<Scalar>::Zero();
+      if (term_force) f = term_force->row(i).transpose();
       const Scalar mh = system.masses()(i) * inv_dt2;
       for (int c = 0; c < 3; ++c) {
         const Scalar y = x(i, c) + dt * v(i, c);

@@ -6,7 +6,7 @@
 ///
 /// Include this header in exactly one translation unit of a program whose other translation units
 /// define MASSSPRING_EXTERN_TEMPLATES, and compile that unit with the same compiler, flags and
-/// configuration macros as the others (NDEBUG, EIGEN_*, MASSSPRING_NO_AVX2, -fopenmp): the program
+/// configuration macros as the others (NDEBUG, EIGEN_*, MASSSPRING_NO_SIMD, -fopenmp): the program
 /// then holds one copy of the solver, compiled once. Including it in two units of one program, or
 /// compiling it differently from the units that use it, breaks the one-definition rule (C++17
 /// [basic.def.odr], [temp.explicit]). A program without MASSSPRING_EXTERN_TEMPLATES needs nothing

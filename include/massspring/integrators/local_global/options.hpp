@@ -20,7 +20,8 @@ enum class PinMode {
   /// Pinned rows and columns are eliminated; the factor covers the free points only. Pinned points
   /// sit exactly at their targets. Well conditioned; works in float.
   Exact,
-  /// The seed's penalty: Q += w C^T C and the right-hand side += w C^T X_target. Pinned points
+  /// The reference solver's penalty: Q += w C^T C and the right-hand side += w C^T X_target. Pinned
+  /// points
   /// move by about |force| / w. Needs double: in float, w = 1e10 swamps the rest of Q, so
   /// FastMassSpring<float system> refuses it unless `allow_float_penalty` is set.
   Penalty,
@@ -28,7 +29,7 @@ enum class PinMode {
 
 /// @brief Where each step's iterations start.
 enum class InitialGuess {
-  /// From the current positions X^t (what the assignment's completed solutions do).
+  /// From the current positions X^t (what the reference solver does).
   Current,
   /// From the inertial prediction X^t + dt V^t.
   Inertial,
@@ -50,10 +51,10 @@ enum class Acceleration {
   Anderson,
 };
 
-/// @brief The elimination order of Q's Cholesky factorisation (Sparse storage).
+/// @brief The elimination order of Q's Cholesky factorization (Sparse storage).
 enum class FillOrdering {
   /// Nested dissection of the rest positions when its factor has fewer nonzeros than the
-  /// Cholesky type's own order (both counted symbolically before factorising), else the latter.
+  /// Cholesky type's own order (both counted symbolically before factorizing), else the latter.
   /// On cloth grids nested dissection wins on the larger grids (docs/performance.md).
   Auto,
   /// The Cholesky type's own ordering: Eigen's AMD for the default SparseCholesky.
@@ -63,7 +64,7 @@ enum class FillOrdering {
 };
 
 /// @brief Options of FastMassSpring. Changing `pins`, `penalty_weight`, `ordering` or (for a
-/// system with colliders) `contact_weight` makes the next step factorise again; the others take
+/// system with colliders) `contact_weight` makes the next step factorize again; the others take
 /// effect at the next step for free.
 template <class Scalar>
 struct FastMassSpringOptions {
@@ -75,7 +76,8 @@ struct FastMassSpringOptions {
   Scalar tolerance = 0;
   /// @brief How pinned points are held (default Exact).
   PinMode pins = PinMode::Exact;
-  /// @brief Penalty weight w for PinMode::Penalty [N/m], > 0. Default 1e10 (the seed's).
+  /// @brief Penalty weight w for PinMode::Penalty [N/m], > 0. Default 1e10 (the reference
+  /// solver's).
   Scalar penalty_weight = Scalar(1e10);
   /// @brief Weight alpha of the contact term inside the iteration, relative to the inertia: each
   /// unknown point i gets the projective-dynamics term alpha m_i / (2 dt^2) |x_i - P(x_i)|^2, P the
@@ -88,22 +90,12 @@ struct FastMassSpringOptions {
   /// restitution is approximate, and motion the starting guess does not predict converges more
   /// slowly (by up to alpha / (1 + alpha) per iteration).
   Scalar contact_weight = Scalar(0);
-  /// @brief A force applied to every point [N], whatever its mass, in addition to the system's
-  /// force terms (the same as a ConstantForce term). The assignment's scenes use (0, -9.8, 0).
-  /// Default zero. Deprecated: add `ConstantForce` to the system instead (the same trajectory, bit
-  /// for bit; every integrator honours a term, only FastMassSpring this option). Kept so that
-  /// existing code compiles; it will go in the next major version.
-  Vector3<Scalar> external_force = Vector3<Scalar>::Zero();
-  /// @brief An acceleration applied to every point [m/s^2] (a force m_i g), in addition to the
-  /// system's force terms (the same as a Gravity term). Default zero. Deprecated: add `Gravity` to
-  /// the system instead (see `external_force`).
-  Vector3<Scalar> gravity = Vector3<Scalar>::Zero();
   /// @brief Where iterations start (default Current).
   InitialGuess initial_guess = InitialGuess::Current;
   /// @brief Acceleration of the iterations (default None: plain local-global).
   Acceleration acceleration = Acceleration::None;
   /// @brief Chebyshev: spectral radius rho of the plain iteration, in [0, 1). 0 (the default):
-  /// estimated by the solver on the first Chebyshev step after each factorisation, from
+  /// estimated by the solver on the first Chebyshev step after each factorization, from
   /// `chebyshev_estimate_iterations` trial iterations (see chebyshev_rho()).
   Scalar chebyshev_rho = 0;
   /// @brief Chebyshev: under-relaxation gamma, in (0, 1]. Default 1: the global step is an
@@ -132,11 +124,8 @@ struct FastMassSpringOptions {
   /// gives what it gains. Their results differ from the baseline (SSE2) ones' in the last bits
   /// (fused multiply-adds), so a trajectory is the same bit for bit only between machines that
   /// take the same path: false takes the baseline code everywhere. Compiling with
-  /// MASSSPRING_NO_AVX2 defined leaves the SIMD code out.
+  /// MASSSPRING_NO_SIMD defined leaves the SIMD code out.
   bool simd = true;
-  /// @brief Deprecated name of `simd`: the SIMD code runs only when both are true. Kept so that
-  /// existing code compiles; it will go in the next major version.
-  bool avx2 = true;
   /// @brief The factor's elimination order (default Auto: the one with fewer nonzeros of nested
   /// dissection and the Cholesky type's own). Sparse storage only: with a Cholesky that takes no
   /// given order (Dense, CHOLMOD) Auto is its own order and NestedDissection is refused. The
@@ -170,9 +159,6 @@ void check_options(const FastMassSpringOptions<Scalar>& options, bool ordered, b
         " swamps the rest of Q in single precision (about 7 digits), so the free points' "
         "equations are lost to rounding; use PinMode::Exact (the default), double, or set "
         "options.allow_float_penalty to accept it"));
-  if (!options.external_force.allFinite())
-    throw Error("FastMassSpring: options.external_force must be finite");
-  if (!options.gravity.allFinite()) throw Error("FastMassSpring: options.gravity must be finite");
   if (!(options.chebyshev_rho >= 0 && options.chebyshev_rho < 1))
     throw Error(detail::message("FastMassSpring: options.chebyshev_rho must be in [0, 1), got ",
                                 options.chebyshev_rho));

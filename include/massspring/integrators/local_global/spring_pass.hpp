@@ -60,7 +60,7 @@ struct SpringEnds {
 
 /// @brief The springs of a system sorted by their lower row a, then by the higher row b, with
 /// their stiffness k [N/m], rest length r [m], k r [N] and the unit direction each keeps for when
-/// its length is zero. Built once per factorisation (allocates); the pass allocates nothing.
+/// its length is zero. Built once per factorization (allocates); the pass allocates nothing.
 template <class Scalar>
 struct PackedSprings {
   using Buffer = Vector<Scalar>;

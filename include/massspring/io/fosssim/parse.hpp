@@ -25,7 +25,7 @@ namespace massspring::io {
 /// @brief Parses a FOSSSim scene held in memory; `name` is the file name used in messages.
 /// @throws Error as read_fosssim_scene() does.
 inline FosssimScene parse_fosssim_scene(const std::string& text, const std::string& name) {
-  // rapidxml (the course's parser) reads `a="1"b="2"`; separate such attributes first (no
+  // rapidxml (FOSSSim's parser) reads `a="1"b="2"`; separate such attributes first (no
   // line moves, so every line number below is the file's)
   const std::string separated = detail::separate_attributes(text);
   detail::FosssimReader r(name, separated);

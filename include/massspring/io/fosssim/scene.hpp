@@ -120,7 +120,7 @@ struct FosssimScene {
     int i = 0, j = 0;
     double kbs = 0, kvc = 0;
   };
-  /// @brief The `<collision>` element: its type and parameters (the course's defaults filled in).
+  /// @brief The `<collision>` element: its type and parameters (FOSSSim's defaults filled in).
   struct Collision {
     FosssimCollision type = FosssimCollision::None;
     double cor = 1;           ///< COR, in [0, 1] (simple, continuous-time, hybrid)
@@ -151,8 +151,8 @@ struct FosssimScene {
   [[nodiscard]] double edge_radius(int e) const {
     return edge_radii.empty() ? kDefaultEdgeRadius : edge_radii[std::size_t(e)];
   }
-  static constexpr double kDefaultRadius = 0.1;        ///< the course's particle radius
-  static constexpr double kDefaultEdgeRadius = 0.015;  ///< the course's edge radius
+  static constexpr double kDefaultRadius = 0.1;        ///< FOSSSim's particle radius
+  static constexpr double kDefaultEdgeRadius = 0.015;  ///< FOSSSim's edge radius
 
   /// @brief Number of particles.
   [[nodiscard]] int num_particles() const { return int(positions.rows()); }

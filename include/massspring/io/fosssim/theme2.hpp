@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// @brief The parts of the FOSSSim reader that Theme 2 (collisions) adds: `<collision>`,
-/// `<collisiondetection>`, and the attribute separation the course's parser (rapidxml) allows.
+/// `<collisiondetection>`, and the attribute separation FOSSSim's parser (rapidxml) allows.
 
 #include <cctype>
 #include <climits>
@@ -18,7 +18,7 @@
 namespace massspring::io::detail {
 
 /// @brief `text` with a blank inserted wherever an attribute's closing quote is followed at once
-/// by the next attribute's name (`vx="0"vy="0"`), which XML forbids and rapidxml, the course's
+/// by the next attribute's name (`vx="0"vy="0"`), which XML forbids and rapidxml, FOSSSim's
 /// parser, reads as two attributes (t2m2/ImpulsesTests/test06.xml has one). Nothing else changes:
 /// comments, processing instructions, CDATA and text are copied as they are; no line moves.
 inline std::string separate_attributes(const std::string& text) {
@@ -71,7 +71,7 @@ inline std::string separate_attributes(const std::string& text) {
 }
 
 /// @brief Reads `<collision>` and `<collisiondetection>` (null nodes: absent) into the scene.
-/// Attributes, as the course's TwoDSceneXMLParser::loadCollisionHandler reads them: type
+/// Attributes, as FOSSSim's TwoDSceneXMLParser::loadCollisionHandler reads them: type
 /// (required: none, simple, penalty, continuous-time, hybrid); COR (default 1) for simple,
 /// continuous-time and hybrid; k and thickness for penalty (defaults 100, 0.01) and hybrid
 /// (10, 0.1); maxiters for hybrid (default 10). An attribute the type does not read is refused.
