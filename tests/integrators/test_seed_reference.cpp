@@ -62,7 +62,7 @@ double largest_relative_difference(System system, const SparseSystem& sparse) {
 
 // A 10-point chain along x, mass 1, k = 500 (the assignment's horizontal chain), pinned as asked.
 template <class System>
-System chain(const std::vector<int>& pins) {
+System seed_chain(const std::vector<int>& pins) {
   const int n = 10;
   massspring::Points<double> v(n, 3);
   massspring::Edges e(n - 1, 2);
@@ -73,7 +73,7 @@ System chain(const std::vector<int>& pins) {
   return system;
 }
 
-massspring::SceneDescription<double> small_cloth(bool voronoi_masses) {
+massspring::SceneDescription<double> seed_cloth(bool voronoi_masses) {
   massspring::ClothOptions o;
   o.columns = 7;
   o.rows = 5;
@@ -91,7 +91,7 @@ TEST_CASE_TEMPLATE("SeedFastMassSpring and FastMassSpring (penalty pins) agree o
   using System = massspring::MassSpringSystem<double, Storage>;
   for (const bool voronoi : {true, false}) {
     CAPTURE(voronoi);
-    const auto scene = small_cloth(voronoi);
+    const auto scene = seed_cloth(voronoi);
     const double worst = largest_relative_difference(massspring::make_system<System>(scene),
                                                      massspring::make_system<SparseSystem>(scene));
     MESSAGE("cloth 7 x 5, largest relative difference over ", kFrames, " frames: ", worst);
@@ -103,13 +103,13 @@ TEST_CASE_TEMPLATE("SeedFastMassSpring and FastMassSpring (penalty pins) agree o
   using System = massspring::MassSpringSystem<double, Storage>;
   for (const auto& pins : {std::vector<int>{0, 9}, std::vector<int>{0}}) {
     CAPTURE(pins.size());
-    largest_relative_difference(chain<System>(pins), chain<SparseSystem>(pins));
+    largest_relative_difference(seed_chain<System>(pins), seed_chain<SparseSystem>(pins));
   }
 }
 
 TEST_CASE("SeedFastMassSpring and FastMassSpring agree from a moving start") {
   // Nonzero initial velocities exercise U_prev = U - dt V against Y = X + dt V.
-  auto system = chain<SparseSystem>({0});
+  auto system = seed_chain<SparseSystem>({0});
   massspring::Points<double> v = massspring::Points<double>::Zero(10, 3);
   for (int i = 1; i < 10; ++i) v.row(i) << 0, 0.3 * i, -0.1 * i;
   system.set_velocities(v);
@@ -117,7 +117,7 @@ TEST_CASE("SeedFastMassSpring and FastMassSpring agree from a moving start") {
 }
 
 TEST_CASE("SeedFastMassSpring: a system at rest without external force stays at rest") {
-  auto system = massspring::make_system<SparseSystem>(small_cloth(true));
+  auto system = massspring::make_system<SparseSystem>(seed_cloth(true));
   SeedFastMassSpring::Options o;
   o.external_force.setZero();
   SeedFastMassSpring seed(o);
@@ -129,7 +129,7 @@ TEST_CASE("SeedFastMassSpring: a system at rest without external force stays at 
 }
 
 TEST_CASE("SeedFastMassSpring: Q, the factor and its preconditions") {
-  auto system = chain<SparseSystem>({0, 9});
+  auto system = seed_chain<SparseSystem>({0, 9});
   SeedFastMassSpring seed;
   CHECK_THROWS_AS(seed.step(), std::logic_error);
   CHECK_THROWS_AS(seed.precompute(system, 0.0), std::invalid_argument);
