@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "simulate/config.hpp"
+#include "simulate/exports.hpp"
 #include "simulate/outputs.hpp"
 #include "simulate/progress.hpp"
 #include "simulate/stability_hint.hpp"
@@ -250,6 +251,9 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   }
   std::optional<TrajectoryCsv> csv;
   if (!c.csv.empty()) csv.emplace(c.csv);
+  std::optional<Exports<System>> exports;
+  if (!c.html.empty() || !c.pc2.empty() || !c.vtk.empty())
+    exports.emplace(c, s, p.dt, p.first_frame);
   auto where = [&] {
     return csv ? " (the trajectory so far is in " + csv->tmp().string() + ")" : std::string();
   };
@@ -308,6 +312,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
       massspring::io::write_obj(out / file, system.positions(), s.faces, s.edges);
     }
     if (csv) csv->write(frame, system);
+    if (exports) exports->write(frame);
   };
 
   std::vector<double> ms;
@@ -366,6 +371,11 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   }
   try {
     if (csv) csv->close();
+  } catch (const std::exception& e) {
+    failures.push_back(e.what());
+  }
+  try {
+    if (exports) exports->close();
   } catch (const std::exception& e) {
     failures.push_back(e.what());
   }
@@ -442,9 +452,13 @@ int run(const Config& c, Setup<System>& s) {
   }
 
   // Outputs: checked before anything is written or a step is taken.
-  check_output_file("--csv", c.csv, s.inputs, {c.save_state}, c.overwrite);
-  check_output_file("--save-state", c.save_state, s.inputs, {c.csv}, c.overwrite);
-  check_output_folder(c.out, s.inputs, {c.csv, c.save_state}, c.overwrite);
+  check_output_file("--csv", c.csv, s.inputs, {c.save_state, c.html, c.pc2}, c.overwrite);
+  check_output_file("--save-state", c.save_state, s.inputs, {c.csv, c.html, c.pc2}, c.overwrite);
+  check_output_folder(
+      c.out, s.inputs,
+      {c.csv, c.save_state, c.html, c.pc2, c.pc2.empty() ? fs::path() : rest_mesh_of(c.pc2)},
+      c.overwrite);
+  check_exports(c, s.inputs);
 
   System& system = s.system;
   // JSON and generated scenes get --gravity and --force as force terms (an XML scene or a saved
