@@ -10,10 +10,12 @@ CASE is one of
         points of the first frame in order; a resumed run starts at its frame; --precision float
   vtk   --vtk: every .vtu read by meshio (python3-meshio): points and velocities equal to the CSV's
         bit for bit, strain |l/l0 - 1| per spring and the mean per face, the pinned points, the
-        cell types; run.pvd lists every frame with its time [s]
+        cell types; run.pvd lists every frame with its time [s]; a second run into the folder is
+        refused, or with --overwrite leaves only its own files
   page  --html: the page holds three.js and nothing from elsewhere (no src or href to a file or a
         URL); its positions (base64, deflated float32) are float32(the CSV's) bit for bit; its
-        frames and times; an 81 x 81 cloth over 300 steps stays under 30 MB
+        frames and times; scripts/viewer_page.py's write_page() writes the same data from arrays;
+        an 81 x 81 cloth over 300 steps stays under 30 MB
 vtk is skipped (exit 77) when numpy or meshio is missing (Debian's python3-numpy, python3-meshio);
 the others need only the standard library."""
 
@@ -197,6 +199,18 @@ def vtk(simulate, source, work):
             check(marked == pinned, f"{stem}: pinned {marked}, the state says {pinned}")
         faces = sum(len(b.data) for b in mesh.cells if b.type != "line")
         check((faces > 0) == (stem == "drape"), f"{stem}: {faces} faces")
+    # --overwrite: a second run into the same folder leaves only its own files (never mixed);
+    # without --overwrite it is refused and nothing changes.
+    before = sorted(os.listdir(os.path.join(work, "chain")))
+    result = subprocess.run([simulate, "chain.json", "--steps", "2", "--vtk", "chain"], cwd=work,
+                            capture_output=True, text=True)
+    check(result.returncode == 1 and "give --overwrite" in result.stderr and
+          sorted(os.listdir(os.path.join(work, "chain"))) == before,
+          f"a second --vtk run without --overwrite: exit {result.returncode} {result.stderr}")
+    run(simulate, ["chain.json", "--steps", "2", "--vtk", "chain", "--overwrite", "--quiet"], work)
+    after = sorted(os.listdir(os.path.join(work, "chain")))
+    check(after == ["frame_00000.vtu", "frame_00001.vtu", "frame_00002.vtu", "run.pvd"],
+          f"--vtk --overwrite: {after}")
     # times: frame x dt (drape's dt is 0.005 s)
     pvd = ElementTree.parse(os.path.join(work, "drape", "run.pvd")).getroot()
     times = [float(d.get("timestep")) for d in pvd.findall("./Collection/DataSet")]
@@ -243,6 +257,27 @@ def page(simulate, source, work):
                     r"url\(\s*['\"]?(?:https?:|file:|//)"):
         found = re.search(pattern, text)
         check(not found, f"the page loads something: {found.group(0) if found else ''}")
+
+    # scripts/viewer_page.py writes the same page from arrays: the same data, given the same
+    # springs, rest lengths and faces.
+    sys.path.insert(0, os.path.join(source, "scripts"))
+    import viewer_page
+
+    def unpack(fmt, b64):
+        raw = base64.b64decode(b64)
+        return list(struct.unpack("<%d%s" % (len(raw) // 4, fmt), raw))
+    pairs = unpack("I", meta["springs"])
+    offsets, corners = unpack("I", meta["face_offsets"]), unpack("I", meta["face_points"])
+    order = sorted(frames)
+    viewer_page.write_page(os.path.join(work, "py.html"), [frames[f][0] for f in order],
+                           [f * 0.005 for f in order], springs=list(zip(pairs[::2], pairs[1::2])),
+                           rest_lengths=unpack("f", meta["rest_lengths"]),
+                           faces=[corners[a:b] for a, b in zip(offsets, offsets[1:])],
+                           frames=order, name=meta["name"])
+    _, meta_py, raw_py = page_data(os.path.join(work, "py.html"))
+    check(raw_py == raw, "viewer_page.write_page: positions differ from the tool's page")
+    for key in ("springs", "rest_lengths", "face_offsets", "face_points", "frames", "times"):
+        check(meta_py[key] == meta[key], f"viewer_page.write_page: {key} differs")
 
     # 81 x 81 points, 300 steps, every frame written: the page stays under 30 MB.
     run(simulate, ["--generate", "cloth:81x81", "--steps", "300", "--iterations", "2", "--html",

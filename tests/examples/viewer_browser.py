@@ -5,7 +5,8 @@ by Selenium): run by ctest as
     viewer_browser.py MASSSPRING_SIMULATE SOURCE_DIR WORK_DIR [SCREENSHOT_DIR]
 
 For a cloth with colliders (examples/scenes/drape.json), a FOSSSim 2D scene
-(examples/scenes_xml/cantilever.xml) and a chain without faces (examples/scenes/chain.json):
+(examples/scenes_xml/cantilever.xml), a chain without faces (examples/scenes/chain.json), and the
+chain's page written from its CSV by scripts/viewer_page.py:
 - the page is opened from its file (file://, nothing beside it) and draws without an error in the
   browser's console;
 - the screenshot is not blank (the background and at least two other colours), and where a face
@@ -184,10 +185,24 @@ def main():
     pages = {}
     for name, args in runs.items():
         page = os.path.join(work, name + ".html")
-        result = subprocess.run([simulate] + args + ["--html", page, "--quiet"],
+        result = subprocess.run([simulate] + args + ["--html", page, "--csv", page + ".csv",
+                                                     "--quiet"],
                                 capture_output=True, text=True, timeout=300)
         check(result.returncode == 0, f"{name}: exit {result.returncode}: {result.stderr}")
         pages[name] = page
+    # The same page written from Python (scripts/viewer_page.py) from the chain's CSV.
+    sys.path.insert(0, os.path.join(source, "scripts"))
+    import viewer_page
+    frames = {}
+    with open(pages["chain"] + ".csv") as handle:
+        next(handle)
+        for line in handle:
+            row = line.split(",")
+            frames.setdefault(int(row[0]), []).append([float(v) for v in row[2:5]])
+    springs, _ = viewer_page.read_obj(os.path.join(source, "examples", "scenes", "chain.obj"))
+    pages["chain-python"] = os.path.join(work, "chain-python.html")
+    viewer_page.write_page(pages["chain-python"], [frames[f] for f in sorted(frames)],
+                           [f / 30 for f in sorted(frames)], springs, frames=sorted(frames))
 
     driver = browser()
     try:
@@ -197,7 +212,7 @@ def main():
                   f"where the cloth is; last frame ({label}) differs in {changed} pixels")
     finally:
         driver.quit()
-    print("OK: 3 pages drawn in Chromium, the slider moves the cloth, no console error")
+    print(f"OK: {len(pages)} pages drawn in Chromium, the slider moves the cloth, no console error")
 
 
 if __name__ == "__main__":
