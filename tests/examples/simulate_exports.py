@@ -14,7 +14,7 @@ CASE is one of
         refused, or with --overwrite leaves only its own files
   page  --html: the page holds three.js and nothing from elsewhere (no src or href to a file or a
         URL); its positions (base64, deflated float32) are float32(the CSV's) bit for bit; its
-        frames and times; scripts/viewer_page.py's write_page() writes the same data from arrays;
+        frames and times; a moving collider's pose per frame; scripts/viewer_page.py's write_page() writes the same data from arrays;
         an 81 x 81 cloth over 300 steps stays under 30 MB
 vtk is skipped (exit 77) when numpy or meshio is missing (Debian's python3-numpy, python3-meshio);
 the others need only the standard library."""
@@ -257,6 +257,24 @@ def page(simulate, source, work):
                     r"url\(\s*['\"]?(?:https?:|file:|//)"):
         found = re.search(pattern, text)
         check(not found, f"the page loads something: {found.group(0) if found else ''}")
+
+    # A moving collider: its pose per frame is where it was (t = t0 + v time, R turning).
+    with open(os.path.join(work, "moving.json"), "w") as handle:
+        json.dump({"obj": "chain.obj", "b": [1], "k": 10, "m": 1, "dt": 0.01,
+                   "colliders": [{"type": "box", "center": [5, 0, 0], "half_extents": [1, 1, 1],
+                                  "velocity": [0, 0, 2], "angular_velocity": [0, 3, 0]}]},
+                  handle)
+    run(simulate, ["moving.json", "--steps", "4", "--html", "moving.html", "--quiet"], work)
+    _, moving, _ = page_data(os.path.join(work, "moving.html"))
+    poses = moving["colliders"][0]["poses"]
+    check(len(poses) == 5, f"moving: {len(poses)} poses for 5 frames")
+    import math
+    for k, pose in enumerate(poses):
+        angle = 3 * 0.01 * k  # about y: R = [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+        expected = [math.cos(angle), 0, math.sin(angle), 0, 1, 0, -math.sin(angle), 0,
+                    math.cos(angle), 5, 0, 2 * 0.01 * k]
+        check(all(abs(a - b) <= 1e-12 for a, b in zip(pose, expected)),
+              f"moving: frame {k}: pose {pose}, expected {expected}")
 
     # scripts/viewer_page.py writes the same page from arrays: the same data, given the same
     # springs, rest lengths and faces.
