@@ -88,7 +88,8 @@ def prepare(source, work):
     for f in range(3):
         with open(os.path.join(work, "stale", f"frame_{f:05d}.obj"), "w") as handle:
             handle.write("v 0 0 0\n")
-    for name, text in (("oldvtk/frame_00000.vtu", "<VTKFile/>\n"), ("oldvtk/run.pvd", "<VTKFile/>\n"),
+    for name, text in (("oldvtk/frame_00000.vtu", "<VTKFile/>\n"),
+                       ("oldvtk/run.pvd", "<VTKFile/>\n"),
                        ("old.pc2", "POINTCACHE2\n"), ("kept.obj", "v 0 0 0\n"),
                        ("existing.csv", "keep me\n"), ("t.csv.tmp", "frame,point\n0,0\n"),
                        ("file.txt", "a file\n"),

@@ -14,8 +14,9 @@ CASE is one of
         refused, or with --overwrite leaves only its own files
   page  --html: the page holds three.js and nothing from elsewhere (no src or href to a file or a
         URL); its positions (base64, deflated float32) are float32(the CSV's) bit for bit; its
-        frames and times; a moving collider's pose per frame; scripts/viewer_page.py's write_page() writes the same data from arrays;
-        an 81 x 81 cloth over 300 steps stays under 30 MB
+        frames and times; a moving collider's pose per frame; scripts/viewer_page.py's
+        write_page() writes the same data from arrays; an 81 x 81 cloth over 300 steps stays
+        under 30 MB
 vtk is skipped (exit 77) when numpy or meshio is missing (Debian's python3-numpy, python3-meshio);
 the others need only the standard library."""
 

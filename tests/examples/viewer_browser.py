@@ -12,11 +12,13 @@ chain's page written from its CSV by scripts/viewer_page.py:
 - the screenshot is not blank (the background and at least two other colours), and where a face
   (or a spring) of the cloth is on screen its colour map's colour is there (the same hue: the
   lighting only scales it);
+- Play advances the frames;
 - pressing End on the frame slider shows the last frame: its label says the last frame's time in
   seconds and the screenshot differs from the first frame's.
 Screenshots are kept in WORK_DIR (and SCREENSHOT_DIR when given) as viewer-<scene>.png.
 Skipped (exit 77) with the reason when Chromium, chromedriver, Selenium or Pillow is missing
-(Debian: chromium, chromium-driver, python3-selenium, python3-pil; scripts/setup.sh installs them)."""
+(Debian: chromium, chromium-driver, python3-selenium, python3-pil; scripts/setup.sh installs
+them)."""
 
 import io
 import os
@@ -139,6 +141,15 @@ def look(driver, page, name, keep):
     check(shows_colour(first, x, y, rgb),
           f"{name}: no pixel near ({x:.0f}, {y:.0f}), where {what} is, has its colour {rgb} "
           f"(strain {strain:.3g}); there: {first.getpixel((int(x), int(y)))}")
+
+    # Play advances the frames (in real time), and stops at the last.
+    driver.find_element(By.ID, "play").click()
+    deadline = time.time() + 20
+    while time.time() < deadline and driver.execute_script(f"return {v}.frame()") == 0:
+        time.sleep(0.05)
+    check(driver.execute_script(f"return {v}.frame()") > 0, f"{name}: Play shows no other frame")
+    if driver.find_element(By.ID, "play").text == "Pause":
+        driver.find_element(By.ID, "play").click()
 
     # The slider: End shows the last frame, and the picture changes.
     slider = driver.find_element(By.ID, "slider")
