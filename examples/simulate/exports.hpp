@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <massspring/diagnostics/strain.hpp>
 #include <massspring/error.hpp>
@@ -162,23 +163,36 @@ class Exports {
   }
 
   /// Writes what is written at the end: the page, the point cache's count, the time series.
-  void close() {
-    if (html_) {
-      const fs::path file = c_.html, tmp = c_.html + ".tmp";
-      html_->write(tmp);
-      rename_into_place(tmp, file, "page");
-    }
-    if (pc2_) {
-      pc2_->close();
-      rename_into_place(c_.pc2 + ".tmp", c_.pc2, "point cache");
-    }
-    if (!c_.vtk.empty()) {
-      const fs::path file = fs::path(c_.vtk) / "run.pvd";
-      fs::path tmp = file;
-      tmp += ".tmp";
-      massspring::io::write_pvd(tmp, series_);
-      rename_into_place(tmp, file, "time series");
-    }
+  /// Returns the message of each that failed (the others are written all the same).
+  std::vector<std::string> close() {
+    std::vector<std::string> failures;
+    auto attempt = [&](auto&& write) {
+      try {
+        write();
+      } catch (const std::exception& e) {
+        failures.push_back(e.what());
+      }
+    };
+    if (html_)
+      attempt([&] {
+        const fs::path file = c_.html, tmp = c_.html + ".tmp";
+        html_->write(tmp);
+        rename_into_place(tmp, file, "page");
+      });
+    if (pc2_)
+      attempt([&] {
+        pc2_->close();
+        rename_into_place(c_.pc2 + ".tmp", c_.pc2, "point cache");
+      });
+    if (!c_.vtk.empty())
+      attempt([&] {
+        const fs::path file = fs::path(c_.vtk) / "run.pvd";
+        fs::path tmp = file;
+        tmp += ".tmp";
+        massspring::io::write_pvd(tmp, series_);
+        rename_into_place(tmp, file, "time series");
+      });
+    return failures;
   }
 
  private:

@@ -1,7 +1,8 @@
 #pragma once
 // massspring-simulate --html: one self-contained page that plays the run in a browser with
 // three.js (Debian's libjs-three, read from kThreeJs and kOrbitControlsJs when the page is written
-// and inlined, so the page needs nothing beside it). The page itself is viewer.html, compiled in.
+// and inlined, so the page needs nothing beside it; CMake's MASSSPRING_THREE_DIR sets where). The
+// page itself is viewer.html, compiled in.
 //
 // What the page holds (viewer.html reads it):
 // - a JSON description: the scene's name, the number of points, per written frame its number, its

@@ -374,11 +374,8 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   } catch (const std::exception& e) {
     failures.push_back(e.what());
   }
-  try {
-    if (exports) exports->close();
-  } catch (const std::exception& e) {
-    failures.push_back(e.what());
-  }
+  if (exports)
+    for (std::string& f : exports->close()) failures.push_back(std::move(f));
 
   const int done = int(ms.size()) - (diverged_at > 0 ? 1 : 0);
   double mean = 0;
