@@ -5,7 +5,7 @@
 #include <massspring/diagnostics/strain.hpp>
 #include <vector>
 
-TEST_CASE("strain: per spring |l/l0 - 1|, 0 for a rest length of 0; per face the boundary mean") {
+TEST_CASE("strain: per spring |l/l0 - 1| (0 for a rest length of 0), per face the boundary mean") {
   massspring::Points<double> x(4, 3);
   x << 0, 0, 0,   //
       1.5, 0, 0,  // 0-1: length 1.5

@@ -69,7 +69,7 @@ TEST_CASE("pc2: header and samples, byte by byte, and the round trip") {
   CHECK(cache.frames[2] == (x * 3.0).cast<float>());
 }
 
-TEST_CASE("pc2: the writer refuses a frame of another size; the reader a file not PC2 or cut") {
+TEST_CASE("pc2: the writer refuses a frame of another size, the reader a file not PC2 or cut") {
   TempDir dir;
   Pc2Writer writer(dir / "a.pc2", 3, 0.0f, 1.0f);
   CHECK_THROWS_AS(writer.write(massspring::Points<double>(2, 3)), Error);
