@@ -1,5 +1,6 @@
 // massspring-simulate: runs a scene (a JSON+OBJ file, a FOSSSim XML file, a state file it saved,
-// or a generated scene), writes OBJ frames and a CSV trajectory, and prints the time per step.
+// or a generated scene), writes OBJ frames and a CSV trajectory, and prints the time per step;
+// optionally a page that plays the run in a browser, a Blender point cache and ParaView frames.
 //
 //   massspring-simulate examples/scenes/flag.json --duration 10 --every 3 --out frames
 //       (10 s at dt 1/30: 300 steps, a frame written every 3rd: frames 0, 3, ..., 300)
@@ -11,6 +12,8 @@
 //        options say otherwise)
 //   massspring-simulate flag.json --steps 10 --save-state s.json
 //   massspring-simulate s.json --steps 10        (continues bit for bit: frames 11..20)
+//   massspring-simulate examples/scenes/drape.json --duration 1.5 --every 6 --html drape.html
+//       (open drape.html in a browser: orbit, zoom, play, scrub; strain as colour)
 //   massspring-simulate examples/scenes/drape.json --self-collision 0.005
 //       (self-collision of the cloth's surface, 5 mm thick; needs a scene with polygons)
 //
@@ -18,7 +21,8 @@
 // cannot be written (refused before the first step whenever it can be known then); 2 when a step
 // diverged (the frames written so far are kept); 128 + the signal on SIGINT (130) or SIGTERM (143):
 // the current step is finished and its frame written, the CSV closed, the state saved.
-// Every message starts with "massspring-simulate: ". Outputs: see simulate/outputs.hpp.
+// Every message starts with "massspring-simulate: ". Outputs: see simulate/outputs.hpp
+// and simulate/exports.hpp.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -263,6 +267,19 @@ int main(int argc, char** argv) {
       ->default_str("none");
   app.add_option("--csv", c.csv, "Write the trajectory (frame,point,x,y,z,vx,vy,vz) here")
       ->default_str("none");
+  app.add_option("--html", c.html,
+                 "Write a page that plays the run in a web browser (three.js inlined: one file "
+                 "that works offline): the surface or the springs coloured by strain, colliders, "
+                 "pinned points; the frames written (--every, and the last)")
+      ->default_str("none");
+  app.add_option("--pc2", c.pc2,
+                 "Write the frames as a Blender point cache FILE.pc2 (Mesh Cache modifier; "
+                 "float32, a sample every --every frames) and its rest mesh FILE.obj")
+      ->default_str("none");
+  app.add_option("--vtk", c.vtk,
+                 "Write the frames for ParaView into this folder: frame_NNNNN.vtu (velocity, "
+                 "pinned, strain per spring and face) and run.pvd, the time series")
+      ->default_str("none");
   app.add_option("--save-state", c.save_state,
                  "Save the final state here (a .json scene that resumes the run bit for bit)")
       ->default_str("none");
@@ -310,7 +327,8 @@ int main(int argc, char** argv) {
     const std::string name = o->get_name();
     if (std::find(whole.begin(), whole.end(), name) != whole.end()) o->type_name("INT");
     if (std::find(real.begin(), real.end(), name) != real.end()) o->type_name("NUMBER");
-    if (name == "--out" || name == "--csv" || name == "--save-state" || name == "scene")
+    if (name == "--out" || name == "--csv" || name == "--save-state" || name == "--html" ||
+        name == "--pc2" || name == "--vtk" || name == "scene")
       o->type_name("PATH");
   }
   try {

@@ -5,7 +5,8 @@
 # Installs only what it uses (scripts/setup.sh demo: no test, benchmark or fuzzing tools) and
 # builds only massspring-simulate, in its own build folder (tests, benchmarks and the Python module
 # off, so that their packages are not needed).
-# Output: out/demo/ (frames/*.obj, trajectory.csv, drape.png, drape.gif)
+# Output: out/demo/ (frames/*.obj, trajectory.csv, drape.html, drape.png, drape.gif); open
+# drape.html in a web browser to orbit, zoom and play the drape (one file, works offline).
 # Env: BUILD_DIR (default build-demo)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -28,7 +29,7 @@ mkdir -p "$out"
 # frame every 6th step.
 "$build"/examples/massspring-simulate examples/scenes/drape.json \
   --duration 1.5 --iterations 50 \
-  --out "$out/frames" --every 6 --csv "$out/trajectory.csv"
+  --out "$out/frames" --every 6 --csv "$out/trajectory.csv" --html "$out/drape.html"
 "$python" scripts/render.py "$out/frames" --dt 0.005 --until 1.5 --panels 4 --size 2.6 \
   --scene examples/scenes/drape.json --png "$out/drape.png" --gif "$out/drape.gif"
-echo "demo: pictures in $out/drape.png and $out/drape.gif"
+echo "demo: pictures in $out/drape.png and $out/drape.gif; open $out/drape.html in a browser"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every example scene with massspring-simulate and renders it into docs/images/ex_*.png and
-# ex_*.gif (docs/examples.md shows them). Frames go to out/examples/ (not committed).
+# ex_*.gif (docs/examples.md shows them). Frames go to out/examples/ (not committed), with a page
+# per scene, out/examples/NAME.html, that plays it in a web browser (massspring-simulate --html).
 #   scripts/examples.sh            # build what is needed, run, render
 # Needs python3-matplotlib (Debian's /usr/bin/python3); scripts/setup.sh installs it.
 set -euo pipefail
@@ -26,7 +27,8 @@ mkdir -p "$out" "$images"
 
 # Orbit: the same scene with explicit and with symplectic Euler (dt = 0.01, 20 s, 5 orbits).
 "$simulate" examples/scenes_xml/orbit.xml --integrator forward-euler --every 5 --out "$out/orbit_forward"
-"$simulate" examples/scenes_xml/orbit.xml --integrator symplectic-euler --every 5 --out "$out/orbit_symplectic"
+"$simulate" examples/scenes_xml/orbit.xml --integrator symplectic-euler --every 5 --out "$out/orbit_symplectic" \
+  --html "$out/orbit.html"
 render "$out/orbit_forward" "$out/orbit_symplectic" --labels "forward Euler,symplectic Euler" \
   --trails --frame-time 0.05 --panels 3 --png "$images/ex_orbit.png"
 rm -rf "$out/orbit_forward" "$out/orbit_symplectic"  # coarser frames for a small GIF
@@ -36,32 +38,35 @@ render "$out/orbit_forward" "$out/orbit_symplectic" --labels "forward Euler,symp
   --trails --frame-time 0.25 --gif "$images/ex_orbit.gif" --fps 10 --size 2.8
 
 # Cantilever: a clamped truss sagging under gravity (symplectic Euler, dt = 0.5 ms, 6 s).
-"$simulate" examples/scenes_xml/cantilever.xml --every 300 --out "$out/cantilever"
+"$simulate" examples/scenes_xml/cantilever.xml --every 300 --out "$out/cantilever" --html "$out/cantilever.html"
 render "$out/cantilever" --frame-time 0.15 --panels 4 --png "$images/ex_cantilever.png" \
   --gif "$images/ex_cantilever.gif" --size 3
 
 # Decreasing rest length: the hanging chain's rest lengths shrink as exp(-0.1 t).
-"$simulate" examples/scenes_xml/shrinking_chain.xml --shrink 0.1 --every 20 --out "$out/shrinking"
+"$simulate" examples/scenes_xml/shrinking_chain.xml --shrink 0.1 --every 20 --out "$out/shrinking" \
+  --html "$out/shrinking_chain.html"
 render "$out/shrinking" --frame-time 0.2 --panels 4 --png "$images/ex_shrinking_chain.png" \
   --gif "$images/ex_shrinking_chain.gif" --size 3
 
 # Damping series: b = 0, 0.1, ..., 1 (top to bottom).
-"$simulate" examples/scenes_xml/damping_series.xml --every 10 --out "$out/damping"
+"$simulate" examples/scenes_xml/damping_series.xml --every 10 --out "$out/damping" --html "$out/damping_series.html"
 render "$out/damping" --frame-time 0.05 --panels 4 --png "$images/ex_damping_series.png" \
   --lengths "$images/ex_damping_lengths.png" --size 3
 
 # The assignment-like 3D scenes with the local-global solver, gravity 9.8 m/s^2, dt = 1/30.
 for scene in chain net; do
-  "$simulate" "examples/scenes/$scene.json" --steps 90 --every 3 --out "$out/$scene"
+  "$simulate" "examples/scenes/$scene.json" --steps 90 --every 3 --out "$out/$scene" --html "$out/$scene.html"
   render "$out/$scene" --panels 4 --png "$images/ex_$scene.png"
 done
-"$simulate" examples/scenes/flag.json --steps 90 --every 10 --iterations 20 --out "$out/flag"
+"$simulate" examples/scenes/flag.json --steps 90 --every 10 --iterations 20 --out "$out/flag" \
+  --html "$out/flag.html"
 render "$out/flag" --panels 4 --png "$images/ex_flag.png" --gif "$images/ex_flag.gif"
 
 # Contact with obstacles (docs/contact.md): the local-global solver, dt = 1/200 s (the motion per step
 # stays below the points' spacing), 2 s; the colliders drawn from each scene.
 for scene in drape table tilted mesh; do
-  "$simulate" "examples/scenes/$scene.json" --duration 2 --dt 0.005 --every 10 --out "$out/$scene"
+  "$simulate" "examples/scenes/$scene.json" --duration 2 --dt 0.005 --every 10 --out "$out/$scene" \
+    --html "$out/$scene.html"
   render "$out/$scene" --dt 0.005 --panels 4 --size 2.4 --scene "examples/scenes/$scene.json" \
     --png "$images/ex_$scene.png" --gif "$images/ex_$scene.gif" --fps 10
 done
@@ -70,7 +75,8 @@ done
 for kind in simple penalty continuous hybrid; do
   dt=0.002 every=25
   [ "$kind" = penalty ] && dt=0.0005 every=100  # its stiff penalty springs take a shorter step
-  "$simulate" "examples/scenes_xml/balls_$kind.xml" --every "$every" --out "$out/balls_$kind"
+  "$simulate" "examples/scenes_xml/balls_$kind.xml" --every "$every" --out "$out/balls_$kind" \
+    --html "$out/balls_$kind.html"
   render "$out/balls_$kind" --dt "$dt" --panels 4 --size 2.4 \
     --scene "examples/scenes_xml/balls_$kind.xml" --png "$images/ex_balls_$kind.png" \
     --gif "$images/ex_balls_$kind.gif" --fps 12

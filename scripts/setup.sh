@@ -2,7 +2,8 @@
 # Installs the Debian packages massspring needs: `scripts/setup.sh` everything the build, tests,
 # benchmarks, fuzzing and demo use (scripts/test.sh); `scripts/setup.sh demo` only what
 # scripts/demo.sh uses (compiler, CMake, the library's and massspring-simulate's dependencies,
-# matplotlib); `--print` lists the packages of the set instead of installing them.
+# matplotlib, three.js for the demo's page); `--print` lists the packages of the set instead of
+# installing them.
 # Idempotent: does nothing when everything is there; runs apt-get update only when something is
 # missing. Uses sudo when not root.
 set -euo pipefail
@@ -14,6 +15,7 @@ demo=(
   libpugixml-dev                    # massspring::io: FOSSSim XML scenes
   libcli11-dev                      # examples: command lines
   python3 python3-matplotlib        # rendering pictures of frames
+  zlib1g-dev libjs-three            # massspring-simulate --html: deflated positions, three.js
 )
 more=(
   doctest-dev                       # tests
@@ -22,6 +24,9 @@ more=(
   pybind11-dev python3-dev python3-numpy  # the Python module (python/)
   python3-pytest                    # the Python module's tests (tests/python/)
   clang libclang-rt-14-dev          # fuzzing (scripts/fuzz.sh): clang++ and libFuzzer
+  chromium chromium-driver          # the --html pages tested in a real browser (headless)
+  python3-selenium python3-pil      #   driven by Selenium; screenshots read with Pillow
+  python3-meshio                    # the --vtk frames read back by an independent reader
 )
 
 set_name=all

@@ -67,6 +67,9 @@ struct Config {
   std::string out;         // folder for frame_NNNNN.obj
   std::string csv;         // trajectory file
   std::string save_state;  // state file
+  std::string html;        // --html: the page that plays the run
+  std::string pc2;         // --pc2: Blender point cache (FILE.pc2, rest mesh FILE.obj)
+  std::string vtk;         // --vtk: folder for ParaView frames and run.pvd
   int save_every = 0;
   bool overwrite = false;
   int every = 1;

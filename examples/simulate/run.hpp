@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "simulate/config.hpp"
+#include "simulate/exports.hpp"
 #include "simulate/outputs.hpp"
 #include "simulate/progress.hpp"
 #include "simulate/stability_hint.hpp"
@@ -245,6 +246,9 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   }
   std::optional<TrajectoryCsv> csv;
   if (!c.csv.empty()) csv.emplace(c.csv);
+  std::optional<Exports<System>> exports;
+  if (!c.html.empty() || !c.pc2.empty() || !c.vtk.empty())
+    exports.emplace(c, s, p.dt, p.first_frame);
   auto where = [&] {
     return csv ? " (the trajectory so far is in " + csv->tmp().string() + ")" : std::string();
   };
@@ -303,6 +307,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
       massspring::io::write_obj(out / file, system.positions(), s.faces, s.edges);
     }
     if (csv) csv->write(frame, system);
+    if (exports) exports->write(frame);
   };
 
   std::vector<double> ms;
@@ -364,6 +369,8 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::
   } catch (const std::exception& e) {
     failures.push_back(e.what());
   }
+  if (exports)
+    for (std::string& f : exports->close()) failures.push_back(std::move(f));
 
   const int done = int(ms.size()) - (diverged_at > 0 ? 1 : 0);
   double mean = 0;
@@ -437,9 +444,13 @@ int run(const Config& c, Setup<System>& s) {
   }
 
   // Outputs: checked before anything is written or a step is taken.
-  check_output_file("--csv", c.csv, s.inputs, {c.save_state}, c.overwrite);
-  check_output_file("--save-state", c.save_state, s.inputs, {c.csv}, c.overwrite);
-  check_output_folder(c.out, s.inputs, {c.csv, c.save_state}, c.overwrite);
+  check_output_file("--csv", c.csv, s.inputs, {c.save_state, c.html, c.pc2}, c.overwrite);
+  check_output_file("--save-state", c.save_state, s.inputs, {c.csv, c.html, c.pc2}, c.overwrite);
+  check_output_folder(
+      c.out, s.inputs,
+      {c.csv, c.save_state, c.html, c.pc2, c.pc2.empty() ? fs::path() : rest_mesh_of(c.pc2)},
+      c.overwrite);
+  check_exports(c, s.inputs);
 
   System& system = s.system;
   // JSON and generated scenes get --gravity and --force as force terms (an XML scene or a saved

@@ -84,10 +84,14 @@ def prepare(source, work):
         shutil.copy(os.path.join(source, "examples", "scenes_xml", name), work)
     os.makedirs(os.path.join(work, "adir.json"))
     os.makedirs(os.path.join(work, "stale"))
+    os.makedirs(os.path.join(work, "oldvtk"))
     for f in range(3):
         with open(os.path.join(work, "stale", f"frame_{f:05d}.obj"), "w") as handle:
             handle.write("v 0 0 0\n")
-    for name, text in (("existing.csv", "keep me\n"), ("t.csv.tmp", "frame,point\n0,0\n"),
+    for name, text in (("oldvtk/frame_00000.vtu", "<VTKFile/>\n"),
+                       ("oldvtk/run.pvd", "<VTKFile/>\n"),
+                       ("old.pc2", "POINTCACHE2\n"), ("kept.obj", "v 0 0 0\n"),
+                       ("existing.csv", "keep me\n"), ("t.csv.tmp", "frame,point\n0,0\n"),
                        ("file.txt", "a file\n"),
                        ("edges.json", '{"obj": "edges.obj", "b": [1], "k": 10}\n'),
                        ("bad_dt.json", '{"obj": "chain.obj", "b": [1], "k": 10, "m": 1, '
@@ -126,6 +130,36 @@ REFUSALS = [
      "--out stale: holds 3 frame files of an earlier run (frame_00000.obj ... frame_00002.obj); "
      "give --overwrite to delete them first, or choose an empty folder"),
     (["chain.json", "--out", "file.txt"], "--out file.txt: exists and is not a folder"),
+    (["chain.json", "--html", "existing.csv"],
+     "--html existing.csv: exists; give --overwrite to replace it, or choose another name"),
+    (["chain.json", "--html", "adir.json"], "--html adir.json: is a directory; give a file name"),
+    (["chain.json", "--html", "no/such/x.html"],
+     "--html no/such/x.html: the folder no/such does not exist"),
+    (["chain.json", "--html", "chain.json"],
+     "--html chain.json: is chain.json, a file this run reads; choose another name"),
+    (["chain.json", "--html", "a.out", "--csv", "a.out"],
+     "--csv a.out: another output of this run is a.out; give each output its own file"),
+    (["chain.json", "--pc2", "run.cache"],
+     "--pc2 run.cache: expected a file name ending in .pc2 (its rest mesh is written beside it, "
+     "as .obj)"),
+    (["chain.json", "--pc2", "old.pc2"],
+     "--pc2 old.pc2: exists; give --overwrite to replace it, or choose another name"),
+    (["chain.json", "--pc2", "kept.pc2"],
+     "--pc2 kept.pc2: its rest mesh kept.obj: exists; give --overwrite to replace it, or choose "
+     "another name"),
+    (["chain.json", "--pc2", "chain.pc2"],
+     "--pc2 chain.pc2: its rest mesh chain.obj: is chain.obj, a file this run reads; choose "
+     "another name"),
+    (["chain.json", "--pc2", "no/such/r.pc2"],
+     "--pc2 no/such/r.pc2: the folder no/such does not exist"),
+    (["chain.json", "--vtk", "file.txt"], "--vtk file.txt: exists and is not a folder"),
+    (["chain.json", "--vtk", "oldvtk"],
+     "--vtk oldvtk: holds 2 files of an earlier run (frame_00000.vtu ... run.pvd); give "
+     "--overwrite to delete them first, or choose an empty folder"),
+    (["chain.json", "--vtk", "v", "--out", "v"],
+     "--vtk v: is also the --out folder; give each its own folder"),
+    (["chain.json", "--vtk", "v.csv", "--csv", "v.csv"],
+     "--vtk v.csv: is also the file of another output"),
     (["chain.obj"], 'chain.obj: unsupported scene format ".obj": supported are .json (JSON+OBJ '
                     'scene), .xml (FOSSSim XML scene)'),
     (["edges.json"], 'edges.json: scene has no faces to take masses from: give a mass ("m")'),

@@ -19,10 +19,11 @@ import subprocess
 import sys
 
 DEMO = {"build-essential", "cmake", "libeigen3-dev", "nlohmann-json3-dev", "libpugixml-dev",
-        "libcli11-dev", "python3", "python3-matplotlib"}
+        "libcli11-dev", "python3", "python3-matplotlib", "zlib1g-dev", "libjs-three"}
 NOT_FOR_THE_DEMO = {"doctest-dev", "libbenchmark-dev", "libsuitesparse-dev", "pybind11-dev",
                     "python3-dev", "python3-numpy", "python3-pytest", "clang",
-                    "libclang-rt-14-dev"}
+                    "libclang-rt-14-dev", "chromium", "chromium-driver", "python3-selenium",
+                    "python3-meshio"}
 # the CMake packages of those tools
 HIDDEN = ["doctest", "benchmark", "CHOLMOD", "pybind11", "Python", "Python3"]
 
