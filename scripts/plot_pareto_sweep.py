@@ -84,7 +84,8 @@ def read(path):
                     continue
                 points.append(p)
             scenes[scene] = {"points": points, "other": other, "change": change,
-                             "ref": {"points": start.shape[0], "springs": "",
+                             "ref": {"points": start.shape[0],
+                                     "springs": fine.attrs.get("num_springs", "?"),
                                      "end_time": float(fine.attrs["dt"]) *
                                      int(fine.attrs["final_step"]),
                                      "still_error": error(start, x_ref, diagonal)},
@@ -105,7 +106,8 @@ def cheapest(points):
 
 
 def docs_tables(path):
-    """{scene: [(threshold, setting, cost)]} from docs/benchmarks.md's generated tables."""
+    """{scene: [(threshold, setting, cost, error)]} from docs/benchmarks.md's generated
+    tables."""
     tables, scene = {}, None
     if not os.path.exists(path):
         return tables
@@ -114,10 +116,10 @@ def docs_tables(path):
             heading = re.match(r"### (\w+)$", line.strip())
             if heading:
                 scene = heading.group(1)
-            row = re.match(r"\| (\de-\d\d) \| (.+?) \| ([\d.e+-]+) \|", line)
+            row = re.match(r"\| (\de-\d\d) \| (.+?) \| ([\d.e+-]+) \| ([\d.e+-]+) \|", line)
             if row and scene:
                 tables.setdefault(scene, []).append((float(row.group(1)), row.group(2),
-                                                     float(row.group(3))))
+                                                     float(row.group(3)), float(row.group(4))))
     return tables
 
 
@@ -136,18 +138,20 @@ def main():
         plot_pareto.plot(scene, data["points"], data["ref"], png)
         print(f"\n### {scene}: {len(data['points'])} runs plotted, {len(data['other'])} not "
               f"(diverged or skipped); references differ by {data['change']:.2g}; {png}")
-        print("| error at most | cheapest setting (sweep) | cost / cost at 1e-1 | "
-              "docs: cheapest setting | docs: cost / cost at 1e-1 |")
-        print("|---:|---|---:|---|---:|")
+        print("| error at most | cheapest setting (sweep) | its error | cost / cost at 1e-1 | "
+              "docs: cheapest setting | docs: its error | docs: cost / cost at 1e-1 |")
+        print("|---:|---|---:|---:|---|---:|---:|")
         mine = cheapest(data["points"])
-        theirs = {t: (s, c) for t, s, c in documented.get(scene, [])}
+        theirs = {t: (s, c, e) for t, s, c, e in documented.get(scene, [])}
         base = mine[0][1]["cost"] if mine[0][1] else math.nan
-        docs_base = theirs.get(THRESHOLDS[0], (None, math.nan))[1]
+        docs_base = theirs.get(THRESHOLDS[0], (None, math.nan, math.nan))[1]
         for t, p in mine:
             setting = plot_pareto.setting(p) if p else "-"
             ratio = p["cost"] / base if p else math.nan
-            ds, dc = theirs.get(t, ("-", math.nan))
-            print(f"| {t:.0e} | {setting} | {ratio:.3g} | {ds} | {dc / docs_base:.3g} |")
+            err = p["error"] if p else math.nan
+            ds, dc, de = theirs.get(t, ("-", math.nan, math.nan))
+            print(f"| {t:.0e} | {setting} | {err:.3g} | {ratio:.3g} | {ds} | {de:.3g} | "
+                  f"{dc / docs_base:.3g} |")
 
 
 if __name__ == "__main__":

@@ -14,7 +14,8 @@ def main(argv=None):
         description="Run a grid of massspring runs on a Dask cluster; one HDF5 file of results. "
                     "A rerun skips the runs the file holds.")
     parser.add_argument("spec", help="the sweep's JSON spec (docs/sweeps.md)")
-    parser.add_argument("--out", required=True, help="the HDF5 results file (created or extended)")
+    parser.add_argument("--out", help="the HDF5 results file (created or extended); needed "
+                                      "unless --check")
     parser.add_argument("--scheduler", default=None,
                         help="an existing Dask scheduler, tcp://HOST:8786 (default: a local "
                              "cluster of --workers processes)")
@@ -27,6 +28,8 @@ def main(argv=None):
                         help="check the spec and list its runs; run nothing")
     parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     args = parser.parse_args(argv)
+    if not args.out and not args.check:
+        parser.error("--out FILE is needed (the HDF5 results file)")
     if args.workers is not None and args.workers < 1:
         parser.error(f"--workers must be >= 1, got {args.workers}")
     if args.workers is not None and args.scheduler:
@@ -52,8 +55,8 @@ def main(argv=None):
     except SpecError as e:
         print(f"massspring.sweep: {e}", file=sys.stderr)
         return 1
-    except (OSError, ValueError) as e:
-        print(f"massspring.sweep: {args.out}: {e}", file=sys.stderr)
+    except (OSError, ValueError) as e:  # the results file, or the scheduler's address
+        print(f"massspring.sweep: {e}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print(f"massspring.sweep: interrupted; the runs committed so far are in {args.out} (the "

@@ -209,12 +209,14 @@ def run(parameters, bundle=None):
     steps        {name: (final_step,) array}: time [s] of each step (wall clock of step()),
                  total_energy and kinetic_energy [J] after it (when `energy`), the StepReport
                  fields
-    dt, integrator, initial_energy [J], wall_seconds (set-up and stepping), host, pid"""
+    dt, integrator, num_points, num_springs, initial_energy [J], wall_seconds (set-up and
+    stepping), host, pid"""
     start = time.perf_counter()
     result = {"status": "ok", "message": "", "host": socket.gethostname(), "pid": os.getpid()}
     try:
         system, solver, integrator, dt, steps = setup(parameters, bundle)
-        result.update(integrator=integrator, dt=dt)
+        result.update(integrator=integrator, dt=dt, num_points=system.num_points,
+                      num_springs=system.num_springs)
         frames = parameters.get("frames", DEFAULTS["frames"])
         every = parameters.get("every", DEFAULTS["every"])
         wanted = set(_frames_to_save(parameters.get("save_frames", DEFAULTS["save_frames"]),

@@ -7,9 +7,10 @@ Layout (docs/sweeps.md):
     /runs/<id>/            one run; <id> is "run-" and 16 hex digits of a hash of its parameters
         attrs              index, origin, parameters (JSON text), each parameter by name
                            (numbers, strings, 3-vectors; objects as JSON text), status, message,
-                           integrator, dt [s], final_step, initial_energy [J], wall_seconds [s],
-                           host, pid, command (the massspring-simulate command line that runs
-                           the same, when there is one)
+                           integrator, dt [s], num_points, num_springs, final_step,
+                           initial_energy [J], wall_seconds [s], host, pid, command (the
+                           massspring-simulate command line that runs the same, when there is
+                           one)
         frames             (k,) int64: the frame numbers stored
         positions          (k, n, 3) float64 [m], velocities (k, n, 3) [m/s]
         final_positions    (n, 3) [m], final_velocities (n, 3) [m/s]: after final_step steps
@@ -49,7 +50,10 @@ class Store:
 
     def __init__(self, path, spec_text=None, version=""):
         self.path = path
-        self.file = h5py.File(path, "a")
+        try:
+            self.file = h5py.File(path, "a")
+        except OSError as e:
+            raise OSError(f"{path}: cannot open it as an HDF5 file: {e}") from None
         found = self.file.attrs.get("format")
         if found != FORMAT and (found is not None or len(self.file) > 0):
             self.file.close()
@@ -101,8 +105,8 @@ class Store:
             attrs[key] = _attribute(value)
         if run.scene_path:
             attrs["scene_path"] = run.scene_path
-        for key in ("status", "message", "integrator", "dt", "final_step", "initial_energy",
-                    "wall_seconds", "host", "pid"):
+        for key in ("status", "message", "integrator", "dt", "num_points", "num_springs",
+                    "final_step", "initial_energy", "wall_seconds", "host", "pid"):
             if key in result:
                 attrs[key] = result[key]
         attrs["command"] = command
