@@ -2,7 +2,7 @@
 """The speed-up of massspring.sweep with 2 Dask workers over 1 (docs/sweeps.md, "Scale").
 
     PYTHONPATH=build/python python3 benchmarks/sweep_scale.py [--runs 16] [--rounds 3]
-        [--scene cloth:30x20] [--frames 60] [--workers 1,2]
+        [--scene cloth:40x30] [--frames 600] [--workers 1,2]
 
 Each round times the same sweep of RUNS runs (SCENE, local-global with 1 to RUNS iterations so
 that every run is its own, FRAMES frames) into a fresh file, on a local cluster of each worker
@@ -26,8 +26,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--runs", type=int, default=16)
     parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--scene", default="cloth:30x20")
-    parser.add_argument("--frames", type=int, default=60)
+    parser.add_argument("--scene", default="cloth:40x30")
+    parser.add_argument("--frames", type=int, default=600)
     parser.add_argument("--workers", default="1,2")
     args = parser.parse_args()
     counts = [int(w) for w in args.workers.split(",")]

@@ -77,13 +77,13 @@ def setup(parameters, bundle=None):
     """The system, the integrator (configured, not precomputed), dt and the number of steps of a
     run. Raises massspring.Error (or another exception) naming what is wrong."""
     p = parameters
-    fosssim, scene_dt = None, None
+    fosssim, scene_dt, state = None, None, False
     if "scene" in p:
         if bundle is not None:
             loaded = _load_bundle(bundle)
         else:
             loaded = ms.load_scene_file(p["scene"])
-        system, fosssim, scene_dt = loaded.system, loaded.fosssim, loaded.dt
+        system, fosssim, scene_dt, state = loaded.system, loaded.fosssim, loaded.dt, loaded.state
     elif isinstance(p["generate"], str):
         system = _generated(p["generate"])
     else:
@@ -130,11 +130,12 @@ def setup(parameters, bundle=None):
             raise ValueError("self_collision: the scene has no surface to collide (no polygons)")
         system.set_self_collision(thickness=p["self_collision"])
 
-    # the force terms, as massspring-simulate adds them (an XML scene has its own)
-    if fosssim is not None and ("gravity" in p or "force" in p):
-        raise ValueError(f"{'gravity' if 'gravity' in p else 'force'}: an XML scene carries its "
-                         "own force terms")
-    if fosssim is None:
+    # the force terms, as massspring-simulate adds them (an XML scene or a saved state has its own)
+    if (fosssim is not None or state) and ("gravity" in p or "force" in p):
+        raise ValueError(f"{'gravity' if 'gravity' in p else 'force'}: "
+                         f"{'an XML scene' if fosssim is not None else 'a saved state'} carries "
+                         "its own force terms")
+    if fosssim is None and not state:
         own_gravity = "gravity" in system.forces
         if own_gravity and "gravity" in p:
             raise ValueError("gravity: the scene carries its own gravity; change it there, or "
