@@ -3,9 +3,9 @@
     python3 -m massspring.sweep SPEC.json --out results.h5 [--scheduler tcp://HOST:8786]
 
 From Python: `massspring.sweep.sweep(spec_path, out, ...)` (driver.py); one run without Dask:
-`massspring.sweep.run_one(parameters)` (runner.py). Needs Dask (python3-dask,
-python3-distributed) for a sweep and h5py (python3-h5py) for its file; the spec's checks
-(`massspring.sweep.check`) need neither."""
+`massspring.sweep.run_one(parameters)` (runner.py). A sweep needs Dask (python3-dask,
+python3-distributed) and h5py (python3-h5py) for its file; checking a spec
+(`massspring.sweep.check`, `--check`) and run_one need neither."""
 
 from .runner import run as run_one
 from .spec import PARAMETERS, SpecError, expand

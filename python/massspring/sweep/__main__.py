@@ -37,6 +37,15 @@ def main(argv=None):
 
     from .spec import SpecError  # noqa: PLC0415
 
+    if not args.check:
+        try:
+            import dask.distributed  # noqa: F401,PLC0415
+            import h5py  # noqa: F401,PLC0415
+        except ImportError as e:
+            print(f"massspring.sweep: needs Dask and h5py ({e}; Debian: python3-dask "
+                  "python3-distributed python3-h5py, which scripts/setup.sh installs)",
+                  file=sys.stderr)
+            return 1
     try:
         if args.check:
             from .driver import check, command_line  # noqa: PLC0415

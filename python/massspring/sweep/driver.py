@@ -18,7 +18,6 @@ import massspring as ms
 
 from . import runner, spec as specs
 from .progress import Progress
-from .store import Store
 
 # Parameters massspring-simulate has an option for (the option is --NAME with dashes).
 _CLI_OPTIONS = {
@@ -110,6 +109,8 @@ def sweep(spec_path, out, scheduler=None, workers=None, client=None, redo_failed
     @param retries      Dask's retries of a task that raised (a run itself never raises)
     @param on_result    called as on_result(run, result) after each run is committed
     @return {"runs": total, "skipped": already in the file, "ran": ..., "ok", "not_ok"}"""
+    from .store import Store  # noqa: PLC0415: h5py, needed here only
+
     runs, scenes = check(spec_path)
     with open(spec_path) as handle:
         spec_text = handle.read()
@@ -143,6 +144,7 @@ def sweep(spec_path, out, scheduler=None, workers=None, client=None, redo_failed
                                            threads_per_worker=1, processes=True,
                                            dashboard_address=None)
                     own_client = client = Client(cluster)
+
             def submit(run):
                 # The scene's bytes travel inside the task, so they live as long as the task
                 # does (scattered data dies with the worker holding it, and its tasks with it).
@@ -161,8 +163,9 @@ def sweep(spec_path, out, scheduler=None, workers=None, client=None, redo_failed
                 try:
                     result = future.result()
                 except Exception as e:  # noqa: BLE001: a lost task is recorded, not raised
-                    # runner.run never raises: the cluster lost the task (its worker died past
-                    # allowed-failures, or its data went with one). Submitted again, twice at most.
+                    # runner.run never raises: the cluster lost the task (its workers died more
+                    # often than allowed-failures, or it was cancelled). Submitted again, twice
+                    # at most.
                     attempts[run.id] = attempts.get(run.id, 0) + 1
                     if attempts[run.id] <= 2:
                         future.release()
