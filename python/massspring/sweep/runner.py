@@ -3,9 +3,9 @@ result as plain data (numpy arrays and numbers).
 
 The set-up follows massspring-simulate's order, so that a run equals the tool's run with the same
 options bit for bit: the scene (file or generator), its model changes, self-collision, then the
-force terms (Gravity unless the scene has its own, ConstantForce, LinearDrag), the integrator and
-its options, precompute, the energy guard (DivergenceGuard, growth `guard_growth`; 0: none), and
-`frames` x `every` steps."""
+force terms (Gravity unless the scene has its own or comes from a generator function,
+ConstantForce, LinearDrag), the integrator and its options, precompute, the energy guard
+(DivergenceGuard, growth `guard_growth`; 0: none), and `frames` x `every` steps."""
 
 import importlib
 import os
@@ -140,7 +140,10 @@ def setup(parameters, bundle=None):
         if own_gravity and "gravity" in p:
             raise ValueError("gravity: the scene carries its own gravity; change it there, or "
                              "leave out \"gravity\"")
-        gravity = p.get("gravity", [0.0, -9.8, 0.0])
+        # massspring-simulate's default gravity, for its kinds of scene only: a generator
+        # function's system comes with the force terms it means to have
+        from_function = isinstance(p.get("generate"), dict)
+        gravity = p.get("gravity", [0.0, 0.0, 0.0] if from_function else [0.0, -9.8, 0.0])
         if any(gravity) and not own_gravity:
             system.add_force(ms.Gravity(gravity))
         if any(p.get("force", [0.0, 0.0, 0.0])):
