@@ -229,3 +229,20 @@ def test_diverged_and_failed_runs_are_recorded_and_the_others_done(cluster, tmp_
     again = sweep(spec, out, scheduler=cluster.scheduler_address, progress=False,
                   redo_failed=True)
     assert again["ran"] == 2 and again["skipped"] == 1
+
+
+def test_a_generator_function_brings_its_own_force_terms():
+    """{"function": ...} scenes get no default gravity: the orbit stays the orbit."""
+    from massspring.sweep import run_one
+    from massspring.sweep.generators import pareto
+
+    generate = {"function": "massspring.sweep.generators:pareto", "arguments": {"scene": "orbit"}}
+    result = run_one({"generate": generate, "integrator": "rk4", "dt": 0.05, "frames": 20,
+                      "guard_growth": 0})
+    assert result["status"] == "ok", result["message"]
+    system, solver = pareto("orbit"), ms.RK4()
+    solver.precompute(system, 0.05)
+    for _ in range(20):
+        assert solver.step(system).ok()
+    assert np.array_equal(result["final_positions"], system.positions)
+    assert abs(np.linalg.norm(system.positions[1]) - 1) < 1e-6  # still on its circle
