@@ -2,7 +2,7 @@
 """The speed-up of massspring.sweep with 2 Dask workers over 1 (docs/sweeps.md, "Scale").
 
     PYTHONPATH=build/python python3 benchmarks/sweep_scale.py [--runs 16] [--rounds 3]
-        [--scene cloth:40x30] [--frames 600] [--workers 1,2]
+        [--scene cloth:40x30] [--frames 600] [--workers 1,2] [--equal]
 
 Each round times the same sweep of RUNS runs (SCENE, local-global with 1 to RUNS iterations so
 that every run is its own, FRAMES frames) into a fresh file, on a local cluster of each worker
@@ -29,14 +29,22 @@ def main():
     parser.add_argument("--scene", default="cloth:40x30")
     parser.add_argument("--frames", type=int, default=600)
     parser.add_argument("--workers", default="1,2")
+    parser.add_argument("--equal", action="store_true",
+                        help="runs of equal work (12 iterations, stiffness scaled by 1.00, "
+                             "1.01, ...) instead of 5 to RUNS + 4 iterations")
     args = parser.parse_args()
     counts = [int(w) for w in args.workers.split(",")]
     times = {w: [] for w in counts}
     with tempfile.TemporaryDirectory() as folder:
         spec = os.path.join(folder, "spec.json")
         with open(spec, "w") as handle:
-            json.dump({"base": {"generate": args.scene, "frames": args.frames},
-                       "grid": {"iterations": list(range(5, 5 + args.runs))}}, handle)
+            if args.equal:  # the same work in every run: 12 iterations, stiffness x 1.00 ...
+                grid = {"stiffness_scale": [1 + 0.01 * k for k in range(args.runs)]}
+                base = {"generate": args.scene, "frames": args.frames, "iterations": 12}
+            else:
+                grid = {"iterations": list(range(5, 5 + args.runs))}
+                base = {"generate": args.scene, "frames": args.frames}
+            json.dump({"base": base, "grid": grid}, handle)
         for r in range(args.rounds):
             for w in counts:
                 with LocalCluster(n_workers=w, threads_per_worker=1, processes=True,
