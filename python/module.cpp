@@ -1,5 +1,6 @@
-// The module `massspring`: massspring.Error, StepReport, and each concept's file in order (the
-// system first: the force terms and colliders add methods to it; the diagnostics' DivergenceGuard
+// The compiled module `massspring._core` (re-exported by the package `massspring`,
+// python/massspring/__init__.py): massspring.Error, StepReport, and each concept's file in order
+// (the system first: the force terms and colliders add methods to it; the diagnostics' DivergenceGuard
 // before the integrators, which add its step() for each of them).
 
 #include <massspring/version.hpp>
@@ -83,7 +84,7 @@ void bind_step_report(py::module_& m) {
 
 }  // namespace massspring::python
 
-PYBIND11_MODULE(massspring, m) {
+PYBIND11_MODULE(_core, m) {
   using namespace massspring::python;
   m.doc() =
       "massspring: mass-spring simulation (MassSpringSystem<double, Sparse>) with the C++ "

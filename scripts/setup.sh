@@ -23,6 +23,8 @@ more=(
   libsuitesparse-dev                # benchmarks: CHOLMOD compared (optional for the library)
   pybind11-dev python3-dev python3-numpy  # the Python module (python/)
   python3-pytest                    # the Python module's tests (tests/python/)
+  python3-dask python3-distributed python3-h5py  # massspring.sweep (docs/sweeps.md)
+  python3-venv python3-pip python3-setuptools python3-wheel  # `pip install .` (setup.py)
   clang libclang-rt-14-dev          # fuzzing (scripts/fuzz.sh): clang++ and libFuzzer
   chromium chromium-driver          # the --html pages tested in a real browser (headless)
   python3-selenium python3-pil      #   driven by Selenium; screenshots read with Pillow
