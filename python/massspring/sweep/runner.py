@@ -165,24 +165,17 @@ def setup(parameters, bundle=None):
                     "anderson_window", "threads"):
             if key in p:
                 setattr(o, key, p[key])
-        if "pins" in p:
-            o.pins = ms.PinMode.Penalty if p["pins"] == "penalty" else ms.PinMode.Exact
-        if "acceleration" in p:
-            o.acceleration = {"none": ms.Acceleration.None_,
-                              "chebyshev": ms.Acceleration.Chebyshev,
-                              "anderson": ms.Acceleration.Anderson}[p["acceleration"]]
-        if "ordering" in p:
-            o.ordering = {"auto": ms.FillOrdering.Auto, "solver": ms.FillOrdering.Solver,
-                          "nested-dissection": ms.FillOrdering.NestedDissection}[p["ordering"]]
-        if "initial_guess" in p:
-            o.initial_guess = (ms.InitialGuess.Inertial if p["initial_guess"] == "inertial"
-                               else ms.InitialGuess.Current)
+        # The names are the library's (option_names.hpp), as massspring-simulate reads them.
+        for key, enum in (("pins", ms.PinMode), ("acceleration", ms.Acceleration),
+                          ("ordering", ms.FillOrdering), ("initial_guess", ms.InitialGuess)):
+            if key in p:
+                setattr(o, key, enum.from_name(p[key]))
     elif integrator in (BE, "linearized-backward-euler"):
         o = solver.options
         if integrator == "linearized-backward-euler":
             o.mode = ms.BackwardEulerMode.Linearized
         if "newton_iterations" in p:
-            o.max_iterations = p["newton_iterations"]
+            o.iterations = p["newton_iterations"]
         if "newton_tolerance" in p:
             o.tolerance = p["newton_tolerance"]
         if "line_search" in p:

@@ -18,6 +18,14 @@ import math
 import numbers
 import os
 
+import massspring as ms
+
+
+def _names(enum):
+    """The names an option enumeration takes (option_names.hpp, the command line's), in order."""
+    return [value.text for value in enum.__members__.values()]
+
+
 # massspring-simulate's --integrator names, and rk4 (the accuracy reference).
 INTEGRATORS = ("fast-mass-spring", "forward-euler", "symplectic-euler", "backward-euler",
                "linearized-backward-euler", "rk4")
@@ -237,9 +245,9 @@ PARAMETERS = {
     # FastMassSpring
     "iterations": (integer(1, 1_000_000), FMS, "most local-global iterations per step"),
     "tolerance": (non_negative, FMS, "stop at this relative energy decrease"),
-    "pins": (one_of("exact", "penalty"), FMS, "how pinned points are held"),
+    "pins": (one_of(*_names(ms.PinMode)), FMS, "how pinned points are held"),
     "penalty_weight": (positive, FMS, "w for pins = penalty [N/m]"),
-    "acceleration": (one_of("none", "chebyshev", "anderson"), FMS, "the acceleration"),
+    "acceleration": (one_of(*_names(ms.Acceleration)), FMS, "the acceleration"),
     "chebyshev_rho": (unit_open, "chebyshev", "spectral radius; 0: estimated"),
     "chebyshev_gamma": (unit_half_open_above, "chebyshev", "under-relaxation"),
     "chebyshev_delay": (integer(1, 1_000_000), "chebyshev", "plain iterations first"),
@@ -247,8 +255,8 @@ PARAMETERS = {
                                       "trial iterations to estimate rho"),
     "anderson_window": (integer(1, 16), "anderson", "past iterates in the fit"),
     "threads": (integer(1, 256), FMS, "threads for the substitutions"),
-    "ordering": (one_of("auto", "solver", "nested-dissection"), FMS, "fill-reducing order"),
-    "initial_guess": (one_of("current", "inertial"), FMS, "where iterations start"),
+    "ordering": (one_of(*_names(ms.FillOrdering)), FMS, "fill-reducing order"),
+    "initial_guess": (one_of(*_names(ms.InitialGuess)), FMS, "where iterations start"),
     # BackwardEuler
     "newton_iterations": (integer(1, 1_000_000), BE, "most Newton iterations per step"),
     "newton_tolerance": (non_negative, BE, "stop when max |dx| <= this (1 + max |x|)"),
