@@ -43,17 +43,9 @@ import subprocess
 import sys
 import time
 
+from checks import check, fail
+
 P = "massspring-simulate: "
-
-
-def fail(message):
-    print("FAIL: " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def snapshot(folder):

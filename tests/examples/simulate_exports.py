@@ -32,15 +32,7 @@ import sys
 import xml.etree.ElementTree as ElementTree
 import zlib
 
-
-def fail(message):
-    print("FAIL: " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
+from checks import check, fail, skip
 
 
 def run(simulate, args, cwd):
@@ -141,8 +133,7 @@ def vtk(simulate, source, work):
         import meshio
         import numpy as np
     except ImportError as error:
-        print(f"skipped: {error} (Debian: python3-meshio, python3-numpy)")
-        sys.exit(77)
+        skip(f"{error} (Debian: python3-meshio, python3-numpy)")
     prepare(source, work)
     checked = 0
     for scene, args in (("drape.json", ["--steps", "10", "--every", "5"]),

@@ -20,15 +20,7 @@ import subprocess
 import sys
 import time
 
-
-def fail(message):
-    print("FAIL: " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
+from checks import check, fail
 
 
 def read_obj(path, points):
