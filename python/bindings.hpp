@@ -100,9 +100,9 @@ void check_idle(const void* object, const char* what);
 
 // ---- the parts of the module, each in its own file --------------------------------------------
 
-void bind_errors(py::module_& m);                // module.cpp
-void bind_system(py::module_& m);                // system.cpp
-void bind_forces(py::module_& m);                // forces.cpp (after bind_system)
+void bind_errors(py::module_& m);  // module.cpp
+void bind_system(py::module_& m);  // system.cpp
+void bind_forces(py::module_& m);  // forces.cpp (after bind_system)
 /// @brief An argument read by the numpy input functions above (any array-like), named
 /// "ArrayLike" in signatures and help() instead of pybind11's "handle".
 struct ArrayLike {

@@ -1,7 +1,7 @@
 // The compiled module `massspring._core` (re-exported by the package `massspring`,
 // python/massspring/__init__.py): massspring.Error, StepReport, and each concept's file in order
-// (the system first: the force terms and colliders add methods to it; the diagnostics' DivergenceGuard
-// before the integrators, which add its step() for each of them).
+// (the system first: the force terms and colliders add methods to it; the diagnostics'
+// DivergenceGuard before the integrators, which add its step() for each of them).
 
 #include <massspring/version.hpp>
 #include <unordered_set>

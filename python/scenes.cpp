@@ -25,8 +25,8 @@ T from_fields(const py::kwargs& fields, const char* type) {
         const std::string attribute = py::str(a);
         if (attribute.rfind('_', 0) != 0) known += (known.empty() ? "" : ", ") + attribute;
       }
-      throw py::type_error(std::string(type) + "() has no field \"" + name + "\" (fields: " +
-                           known + ")");
+      throw py::type_error(std::string(type) + "() has no field \"" + name +
+                           "\" (fields: " + known + ")");
     }
     py::setattr(self, key, field);
   }
@@ -118,7 +118,8 @@ void bind_scenes(py::module_& m) {
                                  "make_cloth's options (scene/cloth.hpp); ClothOptions(columns=30, "
                                  "rows=20, center=[0, 1, 0]) sets fields by name.");
   cloth
-      .def(py::init([](const py::kwargs& f) { return from_fields<ClothOptions>(f, "ClothOptions"); }))
+      .def(py::init(
+          [](const py::kwargs& f) { return from_fields<ClothOptions>(f, "ClothOptions"); }))
       .def_readwrite("columns", &ClothOptions::columns)
       .def_readwrite("rows", &ClothOptions::rows)
       .def_readwrite("width", &ClothOptions::width, "[m]")
@@ -137,7 +138,8 @@ void bind_scenes(py::module_& m) {
                                  "make_chain's options (scene/chain.hpp); fields by name as in "
                                  "ChainOptions(points=12).");
   chain
-      .def(py::init([](const py::kwargs& f) { return from_fields<ChainOptions>(f, "ChainOptions"); }))
+      .def(py::init(
+          [](const py::kwargs& f) { return from_fields<ChainOptions>(f, "ChainOptions"); }))
       .def_readwrite("points", &ChainOptions::points)
       .def_readwrite("length", &ChainOptions::length, "[m]")
       .def_property(

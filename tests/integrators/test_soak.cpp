@@ -55,8 +55,8 @@ long long proc_status_kb(const std::string& field) {
 }
 
 /// 64 x 64 points over 1 m x 1 m, total mass 1 kg, k = 1000 N/m, both diagonals, top corners
-/// pinned, hanging in the x-y plane. Gravity as a force term when asked.
-System soak_cloth(bool gravity_term, int size = 64) {
+/// pinned, hanging in the x-y plane under gravity (a force term).
+System soak_cloth(int size = 64) {
   massspring::ClothOptions o;
   o.columns = size;
   o.rows = size;
@@ -65,7 +65,7 @@ System soak_cloth(bool gravity_term, int size = 64) {
   o.stiffness = 1000;
   o.mass = 1.0 / (size * size);
   System s = massspring::make_system<System>(massspring::make_cloth(o));
-  if (gravity_term) s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
+  s.add_force(massspring::Gravity<double>(Eigen::Vector3d(0, -9.8, 0)));
   return s;
 }
 
@@ -126,7 +126,7 @@ void soak(const char* name, System& s, Integrator& integrator, int frames, bool 
 
 TEST_SUITE("soak" * doctest::skip()) {
   TEST_CASE("soak: FastMassSpring, 64x64 cloth, 10000 frames at dt = 1/30, 10 iterations") {
-    System s = soak_cloth(true);
+    System s = soak_cloth();
     massspring::FastMassSpring<System> fms;
     fms.options.iterations = 10;
     fms.precompute(s, 1.0 / 30);
@@ -134,7 +134,7 @@ TEST_SUITE("soak" * doctest::skip()) {
   }
 
   TEST_CASE("soak: SymplecticEuler, 64x64 cloth, 10000 frames at half the explicit limit") {
-    System s = soak_cloth(true);
+    System s = soak_cloth();
     const double dt = massspring::stable_time_step(s);  // half the limit
     MESSAGE("SymplecticEuler dt = ", dt, " s (limit ", massspring::stability_limit(s), " s)");
     massspring::SymplecticEuler<System> se;
@@ -143,7 +143,7 @@ TEST_SUITE("soak" * doctest::skip()) {
   }
 
   TEST_CASE("soak: RK4, 64x64 cloth, 10000 frames at half the explicit limit") {
-    System s = soak_cloth(true);
+    System s = soak_cloth();
     const double dt = massspring::stable_time_step(s, massspring::ExplicitMethod::RK4);
     massspring::RK4<System> rk4;
     rk4.precompute(s, dt);
@@ -156,7 +156,7 @@ TEST_SUITE("soak" * doctest::skip()) {
   // (3,072 unknowns) keeps the 10,000 frames, the indefinite solves and the heap check for a
   // fraction of that.
   TEST_CASE("soak: BackwardEuler Linearized, 32x32 cloth, 10000 frames at dt = 1/30") {
-    System s = soak_cloth(true, 32);
+    System s = soak_cloth(32);
     massspring::BackwardEuler<System> be;
     be.options.mode = massspring::BackwardEulerMode::Linearized;
     be.precompute(s, 1.0 / 30);

@@ -405,8 +405,7 @@ TEST_CASE("generators: origin puts point 0 there, center the middle of the bound
   using V = massspring::Vector3<double>;
   const V at(0.25, 1.5, -0.75);
   auto middle = [](const SceneDescription<double>& s) {
-    return V(((s.vertices.colwise().minCoeff() + s.vertices.colwise().maxCoeff()) / 2)
-                 .transpose());
+    return V(((s.vertices.colwise().minCoeff() + s.vertices.colwise().maxCoeff()) / 2).transpose());
   };
   massspring::ClothOptions cloth;
   cloth.columns = 5;
@@ -416,8 +415,8 @@ TEST_CASE("generators: origin puts point 0 there, center the middle of the bound
   cloth.center = at;
   const SceneDescription<double> centred = massspring::make_cloth(cloth);
   // a rigid translation: the same shape, its middle at `at` (0.6 m and 0.5 m from its corner)
-  CHECK((centred.vertices.rowwise() - centred.vertices.row(0)).isApprox(
-      plain.vertices.rowwise() - plain.vertices.row(0), 1e-15));
+  CHECK((centred.vertices.rowwise() - centred.vertices.row(0))
+            .isApprox(plain.vertices.rowwise() - plain.vertices.row(0), 1e-15));
   CHECK((middle(centred) - at).norm() < 1e-15);
   CHECK((centred.vertices.row(0).transpose() - V(at.x() - 0.6, at.y(), at.z() - 0.5)).norm() <
         1e-15);
@@ -451,6 +450,6 @@ TEST_CASE("generators: origin puts point 0 there, center the middle of the bound
                        Error);
   cloth.origin.reset();
   cloth.center = V(0, kNaN, 0);
-  CHECK_THROWS_WITH_AS(massspring::make_cloth(cloth), "make_cloth: center must be finite, got (0, nan, 0)",
-                       Error);
+  CHECK_THROWS_WITH_AS(massspring::make_cloth(cloth),
+                       "make_cloth: center must be finite, got (0, nan, 0)", Error);
 }

@@ -21,8 +21,9 @@ namespace massspring::detail {
 inline void place(SceneDescription<double>& s, const std::optional<Vector3<double>>& origin,
                   const std::optional<Vector3<double>>& center, const char* who) {
   if (origin && center)
-    throw Error(message(who, ": give origin (where point 0 goes) or center (where the middle "
-                             "goes), not both"));
+    throw Error(message(who,
+                        ": give origin (where point 0 goes) or center (where the middle "
+                        "goes), not both"));
   const char* name = origin ? "origin" : "center";
   const std::optional<Vector3<double>>& at = origin ? origin : center;
   if (!at || s.vertices.rows() == 0) return;
