@@ -21,6 +21,7 @@ more=(
   doctest-dev                       # tests
   libbenchmark-dev                  # benchmarks
   libsuitesparse-dev                # benchmarks: CHOLMOD compared (optional for the library)
+  libbullet-dev                     # benchmarks: the drape against Bullet's soft body (optional)
   pybind11-dev python3-dev python3-numpy  # the Python module (python/)
   python3-pytest                    # the Python module's tests (tests/python/)
   python3-dask python3-distributed python3-h5py  # massspring.sweep (docs/sweeps.md)
