@@ -53,7 +53,8 @@ render "$out/shrinking" --frame-time 0.2 --panels 4 --png "$images/ex_shrinking_
 render "$out/damping" --frame-time 0.05 --panels 4 --png "$images/ex_damping_series.png" \
   --lengths "$images/ex_damping_lengths.png" --size 3
 
-# The assignment-like 3D scenes with the local-global solver, gravity 9.8 m/s^2, dt = 1/30.
+# 3D scenes like the JSON+OBJ scenes (docs/glossary.md), with the local-global solver, gravity
+# 9.8 m/s^2, dt = 1/30.
 for scene in chain net; do
   "$simulate" "examples/scenes/$scene.json" --steps 90 --every 3 --out "$out/$scene" --html "$out/$scene.html"
   render "$out/$scene" --panels 4 --png "$images/ex_$scene.png"
