@@ -3,7 +3,7 @@
 the same loop in C++ (massspring-simulate, which times each solver.step() with steady_clock).
 
     PYTHONPATH=build/python python3 benchmarks/python_overhead.py \
-        [--simulate build/examples/massspring-simulate] [--scene examples/scenes/flag.json] \
+        [--simulate build/tools/massspring-simulate] [--scene examples/scenes/flag.json] \
         [--frames 150] [--rounds 6]
 
 Each round runs both, alternating which goes first: the C++ loop (--guard-growth 0, so that it
@@ -59,7 +59,7 @@ def python(scene, frames):
 
 def main():
     p = argparse.ArgumentParser(description="Python loop of step() against the C++ loop.")
-    p.add_argument("--simulate", default=os.path.join(ROOT, "build", "examples",
+    p.add_argument("--simulate", default=os.path.join(ROOT, "build", "tools",
                                                        "massspring-simulate"))
     p.add_argument("--scene", default=os.path.join(ROOT, "examples", "scenes", "flag.json"))
     p.add_argument("--frames", type=int, default=150)

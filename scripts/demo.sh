@@ -27,7 +27,7 @@ mkdir -p "$out"
 # on both; the scene carries its gravity and its dt = 1/200 s: at 1/30 s the cloth stays on the ball
 # but the end-of-step friction holds its top and stretches it (docs/contact.md, Limits). 1.5 s, a
 # frame every 6th step.
-"$build"/examples/massspring-simulate examples/scenes/drape.json \
+"$build"/tools/massspring-simulate examples/scenes/drape.json \
   --duration 1.5 --iterations 50 \
   --out "$out/frames" --every 6 --csv "$out/trajectory.csv" --html "$out/drape.html"
 "$python" scripts/render.py "$out/frames" --dt 0.005 --until 1.5 --panels 4 --size 2.6 \

@@ -15,7 +15,7 @@ cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" \
   --target massspring_simulate massspring_make_scenes massspring_pole
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
-simulate="$build/examples/massspring-simulate"
+simulate="$build/tools/massspring-simulate"
 render() { "$python" scripts/render.py "$@"; }
 out=out/examples
 images=docs/images
@@ -23,7 +23,7 @@ rm -rf "$out"
 mkdir -p "$out" "$images"
 
 # The scenes are generated; regenerate them so the pictures show what the generator writes.
-"$build/examples/massspring-make-scenes" examples/scenes examples/scenes_xml >/dev/null
+"$build/tools/massspring-make-scenes" examples/scenes examples/scenes_xml >/dev/null
 
 # Orbit: the same scene with explicit and with symplectic Euler (dt = 0.01, 20 s, 5 orbits).
 "$simulate" examples/scenes_xml/orbit.xml --integrator forward-euler --every 5 --out "$out/orbit_forward"
@@ -53,7 +53,8 @@ render "$out/shrinking" --frame-time 0.2 --panels 4 --png "$images/ex_shrinking_
 render "$out/damping" --frame-time 0.05 --panels 4 --png "$images/ex_damping_series.png" \
   --lengths "$images/ex_damping_lengths.png" --size 3
 
-# The assignment-like 3D scenes with the local-global solver, gravity 9.8 m/s^2, dt = 1/30.
+# 3D scenes like the JSON+OBJ scenes (docs/glossary.md), with the local-global solver, gravity
+# 9.8 m/s^2, dt = 1/30.
 for scene in chain net; do
   "$simulate" "examples/scenes/$scene.json" --steps 90 --every 3 --out "$out/$scene" --html "$out/$scene.html"
   render "$out/$scene" --panels 4 --png "$images/ex_$scene.png"
@@ -82,8 +83,8 @@ for kind in simple penalty continuous hybrid; do
     --gif "$images/ex_balls_$kind.gif" --fps 12
 done
 
-# A flag wound onto a turning pole (examples/pole.cpp): pins moved with the pole, dt = 2 ms, 5 s.
-"$build/examples/massspring-pole" --out "$out/pole" --every 50
+# A flag wound onto a turning pole (tools/pole.cpp): pins moved with the pole, dt = 2 ms, 5 s.
+"$build/tools/massspring-pole" --out "$out/pole" --every 50
 render "$out/pole" --dt 0.002 --panels 4 --size 2.4 --scene "$out/pole/pole.json" \
   --png "$images/ex_pole.png" --gif "$images/ex_pole.gif" --fps 10
 

@@ -4,10 +4,10 @@
 # scene, collision response, steps done of steps asked (ceil(duration / dt)), wall seconds of the
 # whole process (best of REPEAT runs; the default DivergenceGuard energy check on), and the exit
 # status (0: finished with a finite state, 2: diverged).
-#   scripts/fosssim_theme2.sh [build/examples/massspring-simulate] [REPEAT]
+#   scripts/fosssim_theme2.sh [build/tools/massspring-simulate] [REPEAT]
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-sim="${1:-$here/build/examples/massspring-simulate}"
+sim="${1:-$here/build/tools/massspring-simulate}"
 repeat="${2:-1}"
 scenes="${MASSSPRING_SHARED_DIR:-$here/../shared}/scenes/fosssim"
 echo "| scene | collision | steps | wall [s] | exit |"

@@ -260,7 +260,7 @@ def is_flat(runs):
 
 
 def read_scene_2d(path):
-    """A FOSSSim XML scene's particle radii, edge radii and half-planes (the course's defaults:
+    """A FOSSSim XML scene's particle radii, edge radii and half-planes (FOSSSim's defaults:
     radius 0.1 m, edge radius 0.015 m)."""
     root = ElementTree.parse(path).getroot()
     radii = [float(p.get("radius", 0.1)) for p in root.iter("particle")]

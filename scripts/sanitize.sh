@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer: configures the asan-ubsan
-# preset (CMakePresets.json: RelWithDebInfo, warnings are errors, no examples, benchmarks or Python
-# module), builds massspring_tests only and runs ctest without the soak and package labels (too
-# slow under the sanitizers, and the package consumers are not built with them). Any report fails
-# its test: UBSan is built with -fno-sanitize-recover=all, ASan halts on the first error, LSan
-# reports leaks at exit.
+# preset (CMakePresets.json: RelWithDebInfo, warnings are errors, no examples, tools, benchmarks
+# or Python module), builds massspring_tests only and runs ctest without the soak and package
+# labels (too slow under the sanitizers, and the package consumers are not built with them). Any
+# report fails its test: UBSan is built with -fno-sanitize-recover=all, ASan halts on the first
+# error, LSan reports leaks at exit.
 # Usage: scripts/sanitize.sh [extra ctest arguments]
 # Env: BUILD_DIR (default build-asan), MASSSPRING_SANITIZE (default address,undefined),
 #      MASSSPRING_SHARED_DIR (default ../shared beside the checkout),

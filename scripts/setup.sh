@@ -13,7 +13,7 @@ demo=(
   libeigen3-dev                     # the library's one dependency
   nlohmann-json3-dev                # massspring::io: JSON scenes
   libpugixml-dev                    # massspring::io: FOSSSim XML scenes
-  libcli11-dev                      # examples: command lines
+  libcli11-dev                      # tools: command lines
   python3 python3-matplotlib        # rendering pictures of frames
   zlib1g-dev libjs-three            # massspring-simulate --html: deflated positions, three.js
 )

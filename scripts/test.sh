@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Set-up, configure, build (tests, examples, benchmarks; warnings are errors), run every test.
+# Set-up, configure, build (tests, examples, tools, benchmarks; -Werror), run every test.
 # Every test includes the long soak tests (label soak, a few minutes; `scripts/test.sh -LE soak`
 # leaves them out). Sanitizers: scripts/sanitize.sh.
 # Usage: scripts/test.sh [extra ctest arguments]

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """write_page(): the page massspring-simulate --html writes, from a trajectory array in Python (a
-run of the Python module, a sweep's results). The same template (examples/simulate/viewer.html)
+run of the Python module, a sweep's results). The same template (tools/simulate/viewer.html)
 and the same three.js (Debian's libjs-three), so the page plays the same way.
 
     import sys; sys.path.insert(0, "scripts")
@@ -25,7 +25,7 @@ import zlib
 
 THREE = "/usr/share/javascript/three/three.min.js"
 ORBIT = "/usr/share/javascript/three/examples/js/controls/OrbitControls.js"
-TEMPLATE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "simulate",
+TEMPLATE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "simulate",
                         "viewer.html")
 
 

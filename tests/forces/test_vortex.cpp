@@ -1,4 +1,4 @@
-// forces/vortex.hpp against the course's definition (FOSSSim VortexForce::addGradEToTotal, 2D):
+// forces/vortex.hpp against FOSSSim's definition (VortexForce::addGradEToTotal, 2D):
 // rhat = kbs (x_j - x_i) / r turned by (x, y) -> (-y, x), minus (v_j - v_i), times kvc / r^2;
 // F_j = +that, F_i = -that. Internal, velocity-dependent, validated.
 #include <doctest/doctest.h>
@@ -27,7 +27,7 @@ TEST_CASE("VortexForce: the course's 2D formula, internal, velocity-dependent") 
   const massspring::ForceContext<double> c{x, v, m, e, k, l0, b, false};
   Pts out = Pts::Zero(3, 3);
   f.add_force(c, out);
-  // the course's computation, transcribed for pairs (0, 1) and (2, 1)
+  // FOSSSim's computation, transcribed for pairs (0, 1) and (2, 1)
   Pts expected = Pts::Zero(3, 3);
   for (auto [i, j, s, w] :
        {std::tuple<int, int, double, double>{0, 1, kbs, kvc}, {2, 1, -0.3, 5}}) {

@@ -55,7 +55,7 @@ System small_cloth(int columns = 7, int rows = 5, unsigned seed = 3) {
   return s;
 }
 
-// A chain of n points along x, both ends pinned, m = 1, k = 500 (the assignment's chain).
+// A chain of n points along x, both ends pinned, m = 1, k = 500 (the JSON+OBJ scenes' chain).
 template <class System>
 System chain(int n = 10) {
   using Scalar = typename System::Scalar;
@@ -314,7 +314,7 @@ TEST_CASE("float agrees with double on the chain") {
 TEST_CASE_TEMPLATE("a single spring with one pinned end settles at 1 + 9.8 / 500", System,
                    MS_SYSTEM_TYPES) {
   using Scalar = typename System::Scalar;
-  // The assignment's single-spring-horizontal scene: (0,0,0)-(1,0,0), pin at 0, k = 500, m = 1.
+  // The JSON+OBJ scenes' single-spring-horizontal scene: (0,0,0)-(1,0,0), pin at 0, k = 500, m = 1.
   Points<Scalar> v(2, 3);
   v << 0, 0, 0, 1, 0, 0;
   Edges e(1, 2);
@@ -387,7 +387,7 @@ TEST_CASE_TEMPLATE("pinned points: penalty moves them < 1e-6, exact not at all",
     const Points<double> targets = s.pin_targets();
     FastMassSpring<System> solver;
     solver.options.pins = mode;
-    add_uniform_force(s, {0, -9.8, 0});  // the assignment's force: 9.8 N per point
+    add_uniform_force(s, {0, -9.8, 0});  // the JSON+OBJ scenes' force: 9.8 N per point
     solver.precompute(s, 1.0 / 30);
     double worst = 0;
     for (int frame = 0; frame < 50; ++frame) {

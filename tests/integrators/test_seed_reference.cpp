@@ -1,5 +1,5 @@
-// reference/seed/seed_reference.hpp: the seed's formulas (SeedFastMassSpring) against
-// FastMassSpring set up as the assignment is (penalty pins w = 1e10, a force (0, -9.8, 0) per
+// reference/seed/seed_reference.hpp: the reference solver's formulas (SeedFastMassSpring) against
+// FastMassSpring set up as for the JSON+OBJ scenes (penalty pins w = 1e10, a force (0, -9.8, 0) per
 // point, iterations starting from the current positions, 50 of them, dt = 1/30).
 #include <doctest/doctest.h>
 
@@ -22,8 +22,8 @@ using SparseSystem = massspring::MassSpringSystem<double, massspring::Sparse>;
 constexpr double kDt = 1.0 / 30;
 constexpr int kFrames = 10;
 
-// The assignment's settings; its force, (0, -9.8, 0) N on every point, is a ConstantForce term on
-// the system (the seed reference takes it as its own option).
+// The JSON+OBJ scenes' settings; their force, (0, -9.8, 0) N on every point, is a ConstantForce
+// term on the system (the reference solver takes it as its own option).
 massspring::FastMassSpringOptions<double> assignment_options() {
   massspring::FastMassSpringOptions<double> o;
   o.pins = massspring::PinMode::Penalty;
@@ -60,7 +60,8 @@ double largest_relative_difference(System system, const SparseSystem& sparse) {
   return worst;
 }
 
-// A 10-point chain along x, mass 1, k = 500 (the assignment's horizontal chain), pinned as asked.
+// A 10-point chain along x, mass 1, k = 500 (the JSON+OBJ scenes' horizontal chain), pinned as
+// asked.
 template <class System>
 System seed_chain(const std::vector<int>& pins) {
   const int n = 10;

@@ -116,7 +116,7 @@ System chain3() { return System(row3(), edges({{0, 1}, {1, 2}}), 1.0, 10.0); }
 
 }  // namespace
 
-// ---- J: the assignment's JSON+OBJ scenes (load_scene, read_json_scene) ----------------------
+// ---- J: the JSON+OBJ scenes (load_scene, read_json_scene) -----------------------------------
 
 TEST_CASE("J1 malformed JSON") {
   const JsonScene s(R"({"obj": "tri.obj", "b": [1], "k": })");

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "../../examples/fosssim_scenes.hpp"
+#include "../../tools/fosssim_scenes.hpp"
 #include "io/test_files.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "support/paths.hpp"

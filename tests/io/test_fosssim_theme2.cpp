@@ -3,7 +3,7 @@
 // dt, duration, counts, radii, collision type and parameters, detection), builds the system with
 // the handler and penalty force the scene asks for, and runs finite with its own integrator (the
 // first 50 steps here; the whole duration in the soak suite); ImpulsesTests/test06's attributes
-// without a blank are read as the course reads them; a Theme-2 scene round-trips through
+// without a blank are read as FOSSSim reads them; a Theme-2 scene round-trips through
 // write_fosssim_scene.
 #include <doctest/doctest.h>
 
@@ -184,7 +184,7 @@ TEST_CASE("fosssim theme 2: attributes without a blank and a number with a leadi
   CHECK(s.velocities.row(4).isZero());  // vx="0"vy="0"
   const FosssimScene t = read_fosssim_scene(theme2_root() / "t2m3/TestingScenes/test01.xml");
   CHECK(t.positions.col(0).maxCoeff() >= 1.0);
-  // the separation is the course's reading, nothing more: a real error stays an error
+  // the separation is FOSSSim's reading, nothing more: a real error stays an error
   CHECK_THROWS_AS(massspring::io::parse_fosssim_scene("<scene><particle m=\"1\"</scene>", "x.xml"),
                   massspring::Error);
   const std::string quirk =

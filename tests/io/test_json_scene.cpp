@@ -1,4 +1,4 @@
-// io/json_scene.hpp: the assignment's JSON+OBJ format as SOURCE.md describes it, its refusals
+// io/json_scene.hpp: the JSON+OBJ scene format as SOURCE.md describes it, its refusals
 // (file and key named) and the writer's exact round trip.
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-// io/load_scene.hpp: every assignment scene loads with the counts SOURCE.md lists; the errors name
+// io/load_scene.hpp: every JSON+OBJ scene loads with the counts SOURCE.md lists; the errors name
 // the scene file; .xml goes to the FOSSSim reader (tested in test_fosssim_scene.cpp).
 #include <doctest/doctest.h>
 
@@ -170,8 +170,8 @@ TEST_CASE("load_scene puts the scene's path in front of make_system's errors") {
 
 TEST_CASE("the assignment's flag and skirt run 100 frames with its settings, finite throughout" *
           doctest::skip(!massspring::test::have_jacobson())) {
-  // The assignment's main.cpp: dt = 1/30, a force of (0, -9.8, 0) N on every point, penalty pins
-  // w = 1e10 at the rest positions, 50 iterations per step from the current positions.
+  // The JSON+OBJ scenes' conventions: dt = 1/30, a force of (0, -9.8, 0) N on every point,
+  // penalty pins w = 1e10 at the rest positions, 50 iterations per step from the current positions.
   for (const char* file : {"flag.json", "skirt.json"}) {
     CAPTURE(file);
     auto system = load_scene<SparseSystem>(massspring::test::jacobson_dir() / file);

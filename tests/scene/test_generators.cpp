@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "../../examples/project_scenes.hpp"
+#include "../../tools/project_scenes.hpp"
 #include "io/test_files.hpp"
 #include "massspring/io/json_scene.hpp"
 #include "massspring/scene/face_springs.hpp"

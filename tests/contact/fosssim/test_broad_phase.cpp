@@ -1,7 +1,7 @@
 // contact/fosssim/broad_phase.hpp: the grid ("contest") gives exactly the contacts that all pairs give,
 // on random scenes of particles, edges (some long) and planes, for static and swept boxes; its
-// candidates are exactly the pairs whose boxes overlap (brute force); the visiting order is the
-// course's.
+// candidates are exactly the pairs whose boxes overlap (brute force); the visiting order is
+// FOSSSim's.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -126,7 +126,7 @@ TEST_CASE("BroadPhase: grid candidates are exactly the pairs whose boxes overlap
   // the grid's boxes are a few ulps wider: a pair may only be found in addition when its boxes
   // touch within rounding, which random data never does
   CHECK(found == expected);
-  // the course's order: by particle, then particle-particle, particle-edge, particle-plane
+  // FOSSSim's order: by particle, then particle-particle, particle-edge, particle-plane
   CHECK(std::is_sorted(order.begin(), order.end()));
   CHECK(found.size() > 50);
 }

@@ -1,5 +1,5 @@
 // contact/response/impact_zones.hpp and contact/fosssim/hybrid.hpp: a rigid zone keeps its shape and its linear
-// momentum and turns by the course's angle L_z / I_zz in the plane; a zone with a fixed particle
+// momentum and turns by FOSSSim's angle L_z / I_zz in the plane; a zone with a fixed particle
 // or a plane stays where it started, at rest; two equal particles colliding head-on with no
 // impulse rounds (maxiters = 0) end as one body (velocities averaged), with enough rounds and
 // e = 1 they exchange velocities; zones merge through shared particles.
@@ -31,7 +31,7 @@ TEST_CASE("rigid_zone_motion: rigid, momentum kept, the course's 2D angle L_z / 
   Vec m(n);
   m << 1, 2, 0.5, 1.5;
   const double dt = 0.01;
-  // the course's closed form (HybridCollisionHandler::performFailsafe, 2D)
+  // FOSSSim's closed form (HybridCollisionHandler::performFailsafe, 2D)
   const double M = m.sum();
   V3 c = V3::Zero(), p = V3::Zero();
   for (int i = 0; i < n; ++i) {

@@ -72,7 +72,7 @@ TEST_CASE("point_edge_time_of_impact: the edge's interior, its end, a miss, a mo
   CHECK(r.time == doctest::Approx(0.5));
   CHECK(r.alpha == doctest::Approx(0.625));
   CHECK(r.n.isApprox(v3(0, -0.5)));
-  // beyond the end (x = 1.3): the capsule's end cap is reached later than the line; the course's
+  // beyond the end (x = 1.3): the capsule's end cap is reached later than the line; FOSSSim's
   // conditions (alpha in [0, 1]) report no particle-edge impact there
   CHECK(!contact::point_edge_time_of_impact<double>(v3(1.3, 2), v3(0, -3), v3(-1, 0), v3(0, 0),
                                                     v3(1, 0), v3(0, 0), 0.5)

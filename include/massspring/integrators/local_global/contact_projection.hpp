@@ -2,16 +2,29 @@
 /// @file
 /// @brief ContactProjection: the contact term of FastMassSpring's iteration, projective dynamics'
 /// collision constraint (Bouaziz et al. 2014, "Projective Dynamics", sections 3 and 5) with a
-/// constant weight, so Q never changes with the contacts.
+/// constant weight, so Q never changes with the contacts, and a scaled dual variable per point
+/// that makes the converged step exact (the alternating direction method of multipliers: Boyd et
+/// al. 2011, "Distributed Optimization and Statistical Learning via ADMM", section 3.1.1; Overby
+/// et al. 2017, "ADMM ⊇ Projective Dynamics").
 ///
-/// Each unknown point i carries E_c = w_i / 2 |x_i - P(x_i)|^2, w_i = alpha m_i / dt^2 (alpha:
-/// FastMassSpringOptions::contact_weight), P the projection out of the system's colliders
-/// (ColliderSet::project: the position response, with Coulomb friction on the displacement over
-/// the step). Q carries w_i on its diagonal (ReducedSystem::assemble's mass_scale 1 + alpha). The
-/// local step projects the iterate, p_i = P(x_i), and adds w_i p_i to the right-hand side: a point
-/// outside every collider has p_i = x_i, its term is zero with zero gradient, and at convergence
-/// it moves as without the term; a point in contact is pulled to the surface, and the springs and
-/// the global step see it there. Pinned points (penalty pins) keep the term without projection.
+/// Each unknown point i carries the weight w_i = alpha m_i / dt^2 (alpha:
+/// FastMassSpringOptions::contact_weight) on Q's diagonal (ReducedSystem::assemble's mass_scale
+/// 1 + alpha) and, per iteration, with P the projection out of the system's colliders
+/// (ColliderSet::project: the normal push, with Coulomb friction at position level on the
+/// displacement over the step) and u_i the dual variable (0 at the step's start) [m]:
+///   z_i = P(x_i + u_i),   u_i <- x_i + u_i - z_i,   right-hand side += w_i (z_i - u_i).
+/// A point that touches nothing has z_i = x_i and u_i = 0: the term is w_i x_i, a proximal term
+/// that vanishes at convergence. A point in contact converges to x_i = z_i on the surface with
+/// the contact force -w_i u_i [N]: its normal part w_i delta >= 0 (delta the depth of x_i + u_i)
+/// and its tangential part opposed to the displacement over the step, of length <= mu w_i delta
+/// (equal when sliding) - Signorini's condition and Coulomb's law for one implicit-Euler step,
+/// without the error of a penalty (without u the fixed point would sit inside by the depth the
+/// weight allows, and its friction would be scaled down with it). Pinned points (penalty pins)
+/// keep the proximal term without projection.
+///
+/// E_c = w_i / 2 |x_i - P(x_i)|^2 [J] (0 on the surface or outside) is what energy() adds to the
+/// step's objective: a merit for the accelerated loops' guard and the report, not an energy the
+/// iteration descends (contact with friction has none).
 
 #include <cstddef>
 #include <vector>
@@ -35,6 +48,7 @@ class ContactProjection {
     projects_.assign(std::size_t(nr), 0);
     point_.assign(std::size_t(nr), 0);
     base_.resize(3 * Eigen::Index(nr));
+    dual_.setZero(3 * Eigen::Index(nr));
     for (int r = 0; r < nr; ++r) {
       const int i = reduced.point[std::size_t(r)];
       point_[std::size_t(r)] = i;
@@ -44,8 +58,8 @@ class ContactProjection {
   }
 
   /// @brief The step's colliders (their end-of-step poses set), start positions and right-hand
-  /// side's constant part (rhs0, kept as the base the term adds to). Inactive without colliders
-  /// or with alpha 0. Allocates nothing.
+  /// side's constant part (rhs0, kept as the base the term adds to); the dual variables to 0.
+  /// Inactive without colliders or with alpha 0. Allocates nothing.
   template <class System>
   void prepare(System& system, Scalar dt, const Vector<Scalar>& rhs0) {
     colliders_ = system.colliders().empty() ? nullptr : &system.colliders();
@@ -60,17 +74,38 @@ class ContactProjection {
   /// @brief True when the term acts this step.
   [[nodiscard]] bool active() const { return active_; }
 
-  /// @brief Projects the iterate x in place and sets rhs0 = base + w p on the term's rows;
-  /// returns E_c at the x given [J].
-  double apply(Scalar* x, Vector<Scalar>& rhs0) const {
+  /// @brief The local step of the term at the iterate x: z = P(x + u), u <- x + u - z, and
+  /// rhs0 = base + w (z - u) on the term's rows (x unchanged); returns E_c at x [J].
+  double apply(const Scalar* x, Vector<Scalar>& rhs0) {
     double energy = 0;
     Scalar* b = rhs0.data();
     const Scalar* b0 = base_.data();
+    Scalar* dual = dual_.data();
     for (int r = 0; r < int(weight_.size()); ++r) {
-      Scalar* xr = x + 3 * r;
-      if (projects_[std::size_t(r)]) energy += project(r, xr);
+      const Scalar* xr = x + 3 * r;
       const Scalar w = weight_(r);
-      for (int c = 0; c < 3; ++c) b[3 * r + c] = b0[3 * r + c] + w * xr[c];
+      Scalar* b_r = b + 3 * r;
+      const Scalar* b0_r = b0 + 3 * r;
+      if (!projects_[std::size_t(r)]) {
+        for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * xr[c];
+        continue;
+      }
+      Scalar* u = dual + 3 * r;
+      Scalar z[3] = {xr[0] + u[0], xr[1] + u[1], xr[2] + u[2]};
+      const Scalar moved[3] = {z[0], z[1], z[2]};
+      colliders_->project(x_start_ + 3 * point_[std::size_t(r)], z, dt_);
+      if (z[0] == moved[0] && z[1] == moved[1] && z[2] == moved[2]) {
+        // Touches nothing: z = x + u, so u becomes 0 and the term is w x.
+        u[0] = u[1] = u[2] = 0;
+        for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * xr[c];
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) {
+        u[c] = moved[c] - z[c];
+        b_r[c] = b0_r[c] + w * (z[c] - u[c]);
+      }
+      Scalar p[3] = {xr[0], xr[1], xr[2]};
+      energy += project(r, p);
     }
     return energy;
   }
@@ -99,6 +134,7 @@ class ContactProjection {
   std::vector<unsigned char> projects_;
   std::vector<int> point_;
   Vector<Scalar> base_;
+  Vector<Scalar> dual_;  // u, 3 per row [m]
   const contact::ColliderSet<Scalar>* colliders_ = nullptr;
   const Scalar* x_start_ = nullptr;
   Scalar dt_ = 0;

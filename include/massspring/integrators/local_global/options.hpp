@@ -80,15 +80,17 @@ struct FastMassSpringOptions {
   /// solver's).
   Scalar penalty_weight = Scalar(1e10);
   /// @brief Weight alpha of the contact term inside the iteration, relative to the inertia: each
-  /// unknown point i gets the projective-dynamics term alpha m_i / (2 dt^2) |x_i - P(x_i)|^2, P the
-  /// projection out of the system's colliders (local_global/contact_projection.hpp), so the
-  /// springs and the global step see contact. Dimensionless, finite, >= 0. Default 0: contact is
-  /// the end-of-step response every integrator applies, exact in friction and restitution. With
-  /// alpha > 0 (used only when the system has colliders; Q's diagonal then carries (1 + alpha)
-  /// m / dt^2), contact holds within the iterations, which keeps cloth on an obstacle at larger
-  /// time steps, but friction comes from the term and is exact only as the iteration converges,
-  /// restitution is approximate, and motion the starting guess does not predict converges more
-  /// slowly (by up to alpha / (1 + alpha) per iteration).
+  /// unknown point i gets the weight alpha m_i / dt^2 on Q's diagonal, and each local step
+  /// projects it out of the system's colliders with a dual variable (the alternating direction
+  /// method of multipliers; local_global/contact_projection.hpp), so the springs and the global
+  /// step see contact and Coulomb friction. Converged, the step is implicit Euler with
+  /// Signorini-Coulomb contact whatever alpha; alpha sets how fast it converges. Dimensionless,
+  /// finite, >= 0. Default 0: contact is only the end-of-step response every integrator applies
+  /// (docs/contact.md), which at large steps lets cloth slide off an obstacle. With alpha > 0
+  /// (used only when the system has colliders) start from InitialGuess::Inertial: the weight
+  /// slows motion the start does not predict by alpha / (1 + alpha) per iteration. At
+  /// dt = 1/30 s and 10 iterations, 16 suits cloth on obstacles (holds, turns with a turning
+  /// ball) and 1 a lone body sliding (docs/contact.md, "Contact inside the iteration").
   Scalar contact_weight = Scalar(0);
   /// @brief Where iterations start (default Current).
   InitialGuess initial_guess = InitialGuess::Current;

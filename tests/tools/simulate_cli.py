@@ -557,8 +557,8 @@ def hint(simulate, source, work):
 def readme(simulate, source, work):
     """The README's massspring-simulate commands, as printed, twice, in a copy of the scenes."""
     shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(os.path.join(work, "build", "examples"))
-    os.symlink(simulate, os.path.join(work, "build", "examples", "massspring-simulate"))
+    os.makedirs(os.path.join(work, "build", "tools"))
+    os.symlink(simulate, os.path.join(work, "build", "tools", "massspring-simulate"))
     for folder in ("scenes", "scenes_xml"):
         shutil.copytree(os.path.join(source, "examples", folder),
                         os.path.join(work, "examples", folder))

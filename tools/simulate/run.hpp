@@ -222,205 +222,292 @@ void configure(const Config& c, const Plan&, massspring::BackwardEuler<System>& 
 template <class System, class Solver>
 void configure(const Config&, const Plan&, Solver&) {}
 
-// The step loop shared by every integrator.
+// What the run is, as the first line prints it: the integrator's name, and FastMassSpring's pins,
+// iterations and acceleration.
 template <class System, class Solver>
-int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver, std::string what) {
-  using Scalar = typename System::Scalar;
-  System& system = s.system;
-  configure<System>(c, p, solver);
+std::string describe(const Config& c, const Solver&, std::string what) {
   if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>) {
     what += " (" + c.pins + " pins, " + std::to_string(c.iterations) + " iterations";
     if (c.acceleration != "none") what += ", " + c.acceleration;
     what += ")";
   }
+  return what;
+}
+
+// solver.precompute(system, dt); the time it took [ms].
+template <class System, class Solver>
+double timed_precompute(Solver& solver, System& system, double dt) {
   const auto t0 = std::chrono::steady_clock::now();
-  solver.precompute(system, Scalar(p.dt));
-  const double precompute_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  solver.precompute(system, typename System::Scalar(dt));
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
 
-  // Every check has passed: from here on files are written.
-  const fs::path out = c.out;
-  if (!c.out.empty()) {
-    if (c.overwrite) clear_frames(out);
-    fs::create_directories(out);
-  }
-  std::optional<TrajectoryCsv> csv;
-  if (!c.csv.empty()) csv.emplace(c.csv);
-  std::optional<Exports<System>> exports;
-  if (!c.html.empty() || !c.pc2.empty() || !c.vtk.empty())
-    exports.emplace(c, s, p.dt, p.first_frame);
-  auto where = [&] {
-    return csv ? " (the trajectory so far is in " + csv->tmp().string() + ")" : std::string();
-  };
+// The first line: the scene, the run and the precompute time (not with --quiet).
+template <class System>
+void print_header(const Config& c, const Setup<System>& s, const Plan& p, const std::string& what,
+                  double precompute_ms) {
+  if (c.quiet) return;
+  const System& system = s.system;
+  std::printf(
+      "%s: %d points, %d springs, %d pinned, %d force terms; %s, dt %g s, %d steps (%g s)%s; "
+      "%s, %s; precompute %.2f ms\n",
+      s.name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
+      system.forces().size(), what.c_str(), p.dt, p.steps, p.dt * p.steps,
+      p.first_frame ? (" from frame " + std::to_string(p.first_frame)).c_str() : "",
+      c.storage.c_str(), c.precision.c_str(), precompute_ms);
+  std::fflush(stdout);  // seen before the run, also through a pipe
+}
 
-  if (!c.quiet) {
-    std::printf(
-        "%s: %d points, %d springs, %d pinned, %d force terms; %s, dt %g s, %d steps (%g s)%s; "
-        "%s, %s; precompute %.2f ms\n",
-        s.name.c_str(), system.num_points(), system.num_springs(), system.num_pinned(),
-        system.forces().size(), what.c_str(), p.dt, p.steps, p.dt * p.steps,
-        p.first_frame ? (" from frame " + std::to_string(p.first_frame)).c_str() : "",
-        c.storage.c_str(), c.precision.c_str(), precompute_ms);
-    std::fflush(stdout);  // seen before the run, also through a pipe
-  }
-
-  std::vector<double> rest_at_0;
-  if (p.rest_at_0) rest_at_0 = *p.rest_at_0;
-  massspring::Vector<Scalar> rest(system.num_springs());
-
-  auto save = [&](long long frame) {
-    if (c.save_state.empty()) return;
-    massspring::io::StateSceneExtras extras;
-    extras.faces = s.faces;
-    extras.edges = s.edges;
-    nlohmann::json run = {{"frame", frame},
-                          {"time", double(frame) * p.dt},
-                          {"dt", p.dt},
-                          {"integrator", p.integrator},
-                          {"scene", s.name}};
-    // The rho this run used, so that a resumed run uses it too. The solver estimates it once per
-    // factorization; an estimate of 0 (no acceleration: the trial iterations gave no rate in
-    // (0, 1)) is saved as the smallest positive float, which accelerates nothing either (omega =
-    // 2 / (2 - rho^2) is exactly 1, in float and double) but is not "estimate again".
-    if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
-      if (c.acceleration == "chebyshev" && frame > 0)
-        run["chebyshev_rho"] = solver.chebyshev_rho() > 0
-                                   ? double(solver.chebyshev_rho())
-                                   : double(std::numeric_limits<float>::min());
-    if (p.rest_at_0) {
-      run["shrink"] = c.shrink;
-      run["rest_lengths_at_frame_0"] = rest_at_0;
-    }
-    extras.run = std::move(run);
-    massspring::io::write_state(system, c.save_state, extras);
-  };
-
-  long long last_written = -1;
-  const long long last_frame = p.first_frame + p.steps;
-  auto write_frame = [&](long long frame, bool always = false) {
-    if (frame == last_written) return;
-    if (frame % c.every != 0 && frame != last_frame && !always) return;
-    last_written = frame;
+// The files written as the run goes: the OBJ frames (--out), the CSV trajectory (--csv) and the
+// exports (--html, --pc2, --vtk). Constructing it is the run's first write: every check has
+// passed by then.
+template <class System>
+class RunFiles {
+ public:
+  RunFiles(const Config& c, const Setup<System>& s, const Plan& p)
+      : c_(c), s_(s), out_(c.out), last_frame_(p.first_frame + p.steps) {
     if (!c.out.empty()) {
+      if (c.overwrite) clear_frames(out_);
+      fs::create_directories(out_);
+    }
+    if (!c.csv.empty()) csv_.emplace(c.csv);
+    if (!c.html.empty() || !c.pc2.empty() || !c.vtk.empty())
+      exports_.emplace(c, s, p.dt, p.first_frame);
+  }
+
+  // Writes the system's state as frame `frame` to every output, once: every --every-th frame and
+  // the last; any frame when `always` (the first, an interrupted run's).
+  void write_frame(long long frame, bool always = false) {
+    if (frame == last_written_) return;
+    if (frame % c_.every != 0 && frame != last_frame_ && !always) return;
+    last_written_ = frame;
+    if (!c_.out.empty()) {
       char file[32];
       std::snprintf(file, sizeof file, "frame_%05lld.obj", frame);
-      massspring::io::write_obj(out / file, system.positions(), s.faces, s.edges);
+      massspring::io::write_obj(out_ / file, s_.system.positions(), s_.faces, s_.edges);
     }
-    if (csv) csv->write(frame, system);
-    if (exports) exports->write(frame);
-  };
-
-  std::vector<double> ms;
-  ms.reserve(std::size_t(std::min(p.steps, 1 << 20)));
-  long long iterations = 0, diverged_at = -1, interrupted_at = -1, frame = p.first_frame;
-  bool blew_up = false, unresolved = false;
-  int signal = 0;
-  std::optional<massspring::DivergenceGuard<System>> guard;
-  try {
-    write_frame(frame, true);  // the first frame, whatever --every says
-    // The energy check (off with --guard-growth 0): a step whose total energy passes
-    // E(0) + growth x scale is undone and stops the run, like a non-finite one.
-    if (c.guard_growth > 0) guard.emplace(system, massspring::DivergenceOptions{c.guard_growth});
-    Progress progress(c.quiet ? 0.0 : c.progress, p.steps, p.dt);
-    for (int step = 1; step <= p.steps; ++step) {
-      if (g_signal) {  // SIGINT or SIGTERM since the last step: keep its frame, stop
-        signal = g_signal;
-        interrupted_at = frame;
-        write_frame(frame, true);
-        break;
-      }
-      if (p.rest_at_0) {  // free: rest lengths do not change any matrix
-        const double factor = std::exp(-c.shrink * p.dt * double(frame));
-        for (Eigen::Index e = 0; e < rest.size(); ++e)
-          rest(e) = Scalar(rest_at_0[std::size_t(e)]) * Scalar(factor);
-        system.set_rest_lengths(rest);
-      }
-      const auto start = std::chrono::steady_clock::now();
-      const massspring::StepReport report =
-          guard ? guard->step(solver, system) : solver.step(system);
-      ms.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count());
-      iterations += report.iterations;
-      if (!report.ok()) {
-        diverged_at = frame + 1;
-        blew_up = report.blew_up;
-        unresolved = !report.contact_resolved;
-        break;
-      }
-      ++frame;
-      write_frame(frame);
-      if (c.save_every > 0 && frame % c.save_every == 0) save(frame);
-      progress.step_done(step);
-    }
-  } catch (const std::exception& e) {
-    throw Error(std::string(e.what()) + where());
+    if (csv_) csv_->write(frame, s_.system);
+    if (exports_) exports_->write(frame);
   }
 
-  // The end: the state, then the CSV; a failure of either is reported after the other is done.
+  // For an error message: where the trajectory so far is ("" without --csv).
+  [[nodiscard]] std::string where() const {
+    return csv_ ? " (the trajectory so far is in " + csv_->tmp().string() + ")" : std::string();
+  }
+
+  // Closes the CSV, then the exports; appends each failure's message to `failures`.
+  void close(std::vector<std::string>& failures) {
+    try {
+      if (csv_) csv_->close();
+    } catch (const std::exception& e) {
+      failures.push_back(e.what());
+    }
+    if (exports_)
+      for (std::string& f : exports_->close()) failures.push_back(std::move(f));
+  }
+
+ private:
+  const Config& c_;
+  const Setup<System>& s_;
+  fs::path out_;
+  long long last_frame_;
+  long long last_written_ = -1;
+  std::optional<TrajectoryCsv> csv_;
+  std::optional<Exports<System>> exports_;
+};
+
+// --save-state: the system at frame `frame`, with what a resumed run needs in its "run" entry.
+template <class System, class Solver>
+void save_state(const Config& c, const Setup<System>& s, const Plan& p, const Solver& solver,
+                long long frame) {
+  if (c.save_state.empty()) return;
+  massspring::io::StateSceneExtras extras;
+  extras.faces = s.faces;
+  extras.edges = s.edges;
+  nlohmann::json run = {{"frame", frame},
+                        {"time", double(frame) * p.dt},
+                        {"dt", p.dt},
+                        {"integrator", p.integrator},
+                        {"scene", s.name}};
+  // The rho this run used, so that a resumed run uses it too. The solver estimates it once per
+  // factorization; an estimate of 0 (no acceleration: the trial iterations gave no rate in
+  // (0, 1)) is saved as the smallest positive float, which accelerates nothing either (omega =
+  // 2 / (2 - rho^2) is exactly 1, in float and double) but is not "estimate again".
+  if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
+    if (c.acceleration == "chebyshev" && frame > 0)
+      run["chebyshev_rho"] = solver.chebyshev_rho() > 0 ? double(solver.chebyshev_rho())
+                                                        : double(std::numeric_limits<float>::min());
+  if (p.rest_at_0) {
+    run["shrink"] = c.shrink;
+    run["rest_lengths_at_frame_0"] = *p.rest_at_0;
+  }
+  extras.run = std::move(run);
+  massspring::io::write_state(s.system, c.save_state, extras);
+}
+
+// How the steps went and how they ended.
+struct Outcome {
+  std::vector<double> ms;         // the time of each step taken, a diverged one included [ms]
+  long long iterations = 0;       // summed over the steps
+  long long frame = 0;            // the last frame reached (the last good one)
+  long long diverged_at = -1;     // the step that diverged, or -1
+  long long interrupted_at = -1;  // the frame at which a signal stopped the run, or -1
+  int signal = 0;                 // that signal
+  bool blew_up = false;           // the divergence guard stopped it (not a non-finite state)
+  bool unresolved = false;        // surface contact left a crossing
+  double guard_limit = 0;         // the divergence guard's limit and scale [J]
+  double guard_scale = 0;
+};
+
+// The steps: each timed, --shrink's rest lengths set before it, its frame written after it (and
+// the state saved every --save-every frames). Stops at a divergence (the last good state kept) or
+// after the step in progress at SIGINT or SIGTERM.
+template <class System, class Solver>
+Outcome run_steps(const Config& c, Setup<System>& s, const Plan& p, Solver& solver,
+                  RunFiles<System>& files) {
+  using Scalar = typename System::Scalar;
+  System& system = s.system;
+  Outcome o;
+  o.ms.reserve(std::size_t(std::min(p.steps, 1 << 20)));
+  o.frame = p.first_frame;
+  massspring::Vector<Scalar> rest(system.num_springs());
+  std::optional<massspring::DivergenceGuard<System>> guard;
+  files.write_frame(o.frame, true);  // the first frame, whatever --every says
+  // The energy check (off with --guard-growth 0): a step whose total energy passes
+  // E(0) + growth x scale is undone and stops the run, like a non-finite one.
+  if (c.guard_growth > 0) guard.emplace(system, massspring::DivergenceOptions{c.guard_growth});
+  Progress progress(c.quiet ? 0.0 : c.progress, p.steps, p.dt);
+  for (int step = 1; step <= p.steps; ++step) {
+    if (g_signal) {  // SIGINT or SIGTERM since the last step: keep its frame, stop
+      o.signal = g_signal;
+      o.interrupted_at = o.frame;
+      files.write_frame(o.frame, true);
+      break;
+    }
+    if (p.rest_at_0) {  // free: rest lengths do not change any matrix
+      const double factor = std::exp(-c.shrink * p.dt * double(o.frame));
+      for (Eigen::Index e = 0; e < rest.size(); ++e)
+        rest(e) = Scalar((*p.rest_at_0)[std::size_t(e)]) * Scalar(factor);
+      system.set_rest_lengths(rest);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const massspring::StepReport report = guard ? guard->step(solver, system) : solver.step(system);
+    o.ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    o.iterations += report.iterations;
+    if (!report.ok()) {
+      o.diverged_at = o.frame + 1;
+      o.blew_up = report.blew_up;
+      o.unresolved = !report.contact_resolved;
+      break;
+    }
+    ++o.frame;
+    files.write_frame(o.frame);
+    if (c.save_every > 0 && o.frame % c.save_every == 0) save_state(c, s, p, solver, o.frame);
+    progress.step_done(step);
+  }
+  if (guard) {
+    o.guard_limit = guard->limit();
+    o.guard_scale = guard->scale();
+  }
+  return o;
+}
+
+// The end's writes: the state, then the CSV and the exports; a failure of one is reported after
+// the others are done. Returns the failures' messages.
+template <class System, class Solver>
+std::vector<std::string> finish(const Config& c, const Setup<System>& s, const Plan& p,
+                                const Solver& solver, RunFiles<System>& files, long long frame) {
   std::vector<std::string> failures;
   try {
-    save(frame);
+    save_state(c, s, p, solver, frame);
   } catch (const std::exception& e) {
     failures.push_back(e.what());
   }
-  try {
-    if (csv) csv->close();
-  } catch (const std::exception& e) {
-    failures.push_back(e.what());
-  }
-  if (exports)
-    for (std::string& f : exports->close()) failures.push_back(std::move(f));
+  files.close(failures);
+  return failures;
+}
 
-  const int done = int(ms.size()) - (diverged_at > 0 ? 1 : 0);
+// The step times: a summary line, or with --quiet the median alone [ms].
+inline void print_times(const Config& c, const Outcome& o) {
+  const std::vector<double>& ms = o.ms;
+  const int done = int(ms.size()) - (o.diverged_at > 0 ? 1 : 0);
   double mean = 0;
   for (double x : ms) mean += x / double(ms.size());
   if (!c.quiet)
     std::printf(
         "%d steps, %.2f iterations per step: median %.3f ms per step "
         "(mean %.3f, p10 %.3f, p90 %.3f, max %.3f)\n",
-        done, ms.empty() ? 0.0 : double(iterations) / double(ms.size()), percentile(ms, 0.5), mean,
-        percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
+        done, ms.empty() ? 0.0 : double(o.iterations) / double(ms.size()), percentile(ms, 0.5),
+        mean, percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
   else
     std::printf("%.3f\n", percentile(ms, 0.5));
   std::fflush(stdout);
-  for (const std::string& f : failures)
-    std::fprintf(stderr, "massspring-simulate: %s\n", f.c_str());
+}
 
+// Says why the run stopped early, if it did, and returns the exit status: kExitDiverged after a
+// divergence (with the stable step's hint for an explicit integrator), 128 + the signal after an
+// interruption, kExitBadInput when an output failed at the end, 0 otherwise.
+inline int exit_status(const Config& c, const Plan& p, const Outcome& o, bool failed) {
   const std::string range = std::to_string(p.first_frame) + "..";
-  const std::string hint = diverged_at > 0 ? p.hint.text(p.dt, p.integrator) : "";
+  const std::string hint = o.diverged_at > 0 ? p.hint.text(p.dt, p.integrator) : "";
   auto print_hint = [&] {
     if (!hint.empty()) std::fprintf(stderr, "massspring-simulate: %s\n", hint.c_str());
   };
-  if (diverged_at > 0 && blew_up) {
+  if (o.diverged_at > 0 && o.blew_up) {
     std::fprintf(stderr,
                  "massspring-simulate: step %lld: the total energy passed the divergence limit "
                  "(%.6g J: the initial energy + %g x the scale %.6g J); stopped with the last good "
                  "state (steps %s%lld written)\n",
-                 diverged_at, double(guard->limit()), c.guard_growth, double(guard->scale()),
-                 range.c_str(), diverged_at - 1);
+                 o.diverged_at, o.guard_limit, c.guard_growth, o.guard_scale, range.c_str(),
+                 o.diverged_at - 1);
     print_hint();
     return kExitDiverged;
   }
-  if (diverged_at > 0) {
+  if (o.diverged_at > 0) {
     std::fprintf(stderr,
                  "massspring-simulate: step %lld: %s; stopped with the last %s state (steps %s%lld "
                  "written)\n",
-                 diverged_at,
-                 unresolved ? "surface contact left a crossing its rounds could not remove"
-                            : "the step produced a non-finite state",
-                 unresolved ? "good" : "finite", range.c_str(), diverged_at - 1);
+                 o.diverged_at,
+                 o.unresolved ? "surface contact left a crossing its rounds could not remove"
+                              : "the step produced a non-finite state",
+                 o.unresolved ? "good" : "finite", range.c_str(), o.diverged_at - 1);
     print_hint();
     return kExitDiverged;
   }
-  if (interrupted_at >= 0) {
+  if (o.interrupted_at >= 0) {
     std::fprintf(stderr,
                  "massspring-simulate: interrupted at frame %lld; frames %s%lld written%s\n",
-                 interrupted_at, range.c_str(), interrupted_at,
+                 o.interrupted_at, range.c_str(), o.interrupted_at,
                  c.every > 1 ? " (every --every-th and the last)" : "");
-    return 128 + signal;
+    return 128 + o.signal;
   }
-  return failures.empty() ? 0 : kExitBadInput;
+  return failed ? kExitBadInput : 0;
+}
+
+// A run with one integrator: configure and precompute, open the outputs, step, close the
+// outputs, report; returns the exit status.
+template <class System, class Solver>
+int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver,
+         const std::string& integrator) {
+  configure<System>(c, p, solver);
+  const std::string what = describe<System>(c, solver, integrator);
+  const double precompute_ms = timed_precompute(solver, s.system, p.dt);
+  // Every check has passed: from here on files are written.
+  RunFiles<System> files(c, s, p);
+  print_header(c, s, p, what, precompute_ms);
+  Outcome o;
+  try {
+    o = run_steps(c, s, p, solver, files);
+  } catch (const std::exception& e) {
+    throw Error(std::string(e.what()) + files.where());
+  }
+  const std::vector<std::string> failures = finish(c, s, p, solver, files, o.frame);
+  print_times(c, o);
+  for (const std::string& f : failures)
+    std::fprintf(stderr, "massspring-simulate: %s\n", f.c_str());
+  return exit_status(c, p, o, !failures.empty());
 }
 
 template <class System>
