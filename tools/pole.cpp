@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
   app.add_option("--iterations", iterations, "local-global iterations per step")
       ->check(CLI::PositiveNumber);
   app.add_option("--contact-weight", contact_weight,
-                 "FastMassSpringOptions::contact_weight (0: contact at the end of the step)")
+                 "FastMassSpringOptions::contact_weight (0: contact at the end of the step; > 0: "
+                 "inside the iteration, from the inertial prediction)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--symplectic", symplectic, "SymplecticEuler instead of FastMassSpring");
   app.add_option("--min-wound", min_wound,
@@ -93,6 +94,8 @@ int main(int argc, char** argv) {
     ms::FastMassSpring<System> solver;
     solver.options.iterations = iterations;
     solver.options.contact_weight = contact_weight;
+    // The contact term's weight slows motion the start does not predict (options.hpp).
+    if (contact_weight > 0) solver.options.initial_guess = ms::InitialGuess::Inertial;
     if (symplectic)
       se.precompute(sys, dt);
     else

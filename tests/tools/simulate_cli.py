@@ -97,7 +97,8 @@ def prepare(source, work):
             handle.write(text)
 
 
-FLOAT_OPTIONS = ["--dt", "--duration", "--progress", "--shrink", "--tolerance", "--penalty-weight", "--chebyshev-rho",
+FLOAT_OPTIONS = ["--dt", "--duration", "--progress", "--shrink", "--tolerance", "--penalty-weight", "--contact-weight",
+                 "--chebyshev-rho",
                  "--chebyshev-gamma", "--newton-tolerance", "--guard-growth", "--self-collision"]
 
 # (arguments, expected stderr after the prefix); every one exits 1 with nothing written.
@@ -242,6 +243,7 @@ REFUSALS = [
      "--self-collision: --generate net has no surface to collide (no polygons: chains, nets and "
      "XML scenes have none)"),
     (["chain.json", "--self-collision", "0"], "--self-collision: must be > 0, got 0"),
+    (["chain.json", "--contact-weight", "-1"], "--contact-weight: must be >= 0, got -1"),
     (["chain.json", "--integrator", "rk5"],
      "--integrator: rk5 not in {forward-euler,symplectic-euler,backward-euler,"
      "linearized-backward-euler,fast-mass-spring} (see --help)"),

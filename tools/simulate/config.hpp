@@ -42,6 +42,7 @@ struct Config {
   double tolerance = kFastMassSpring.tolerance;
   std::string pins = massspring::option_name(kFastMassSpring.pins);
   double penalty_weight = kFastMassSpring.penalty_weight;
+  double contact_weight = kFastMassSpring.contact_weight;
   std::string acceleration = massspring::option_name(kFastMassSpring.acceleration);
   double chebyshev_rho = kFastMassSpring.chebyshev_rho;
   bool rho_given = false;

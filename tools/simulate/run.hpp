@@ -194,6 +194,7 @@ void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System
   o.tolerance = Scalar(c.tolerance);
   o.pins = massspring::parse_option<massspring::PinMode>(c.pins);
   o.penalty_weight = Scalar(c.penalty_weight);
+  o.contact_weight = Scalar(c.contact_weight);
   o.acceleration = massspring::parse_option<massspring::Acceleration>(c.acceleration);
   // A resumed run uses the rho its first run estimated: estimating again, from another state,
   // would give another rho and another trajectory.
