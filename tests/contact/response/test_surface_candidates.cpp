@@ -57,6 +57,39 @@ PairSet brute_force(const contact::SurfaceElements<double>& e, double g) {
   return out;
 }
 
+// Every pair with an obstacle's element whose boxes overlap, each element's box grown as
+// SurfaceElements::grow_of() says (the cloth's by g, an obstacle's by its gap), the pairs
+// SurfaceElements::pair_gap() tests (no cloth-cloth pair: self-collision off).
+PairSet brute_force_obstacles(const contact::SurfaceElements<double>& e, double g) {
+  PairSet out;
+  const auto& x0 = e.x0;
+  const auto& x1 = e.x1;
+  for (std::size_t v = 0; v < e.points.size(); ++v) {
+    const auto& pv = e.points[v];
+    const int i = pv.p[0];
+    const Box bp = swept(x0, x1, {i}, e.grow_of(pv, g));
+    for (std::size_t t = 0; t < e.triangles.size(); ++t) {
+      const auto& tt = e.triangles[t];
+      const auto& c = tt.p;
+      if (e.pair_gap(pv.owner, tt.owner) < 0) continue;
+      if (i == c[0] || i == c[1] || i == c[2]) continue;
+      if (bp.overlaps(swept(x0, x1, {c[0], c[1], c[2]}, e.grow_of(tt, g))))
+        out.insert({0, int(v), int(t)});
+    }
+  }
+  for (std::size_t a = 0; a < e.edges.size(); ++a)
+    for (std::size_t b = a + 1; b < e.edges.size(); ++b) {
+      const auto& p = e.edges[a].p;
+      const auto& q = e.edges[b].p;
+      if (e.pair_gap(e.edges[a].owner, e.edges[b].owner) < 0) continue;
+      if (p[0] == q[0] || p[0] == q[1] || p[1] == q[0] || p[1] == q[1]) continue;
+      if (swept(x0, x1, {p[0], p[1]}, e.grow_of(e.edges[a], g))
+              .overlaps(swept(x0, x1, {q[0], q[1]}, e.grow_of(e.edges[b], g))))
+        out.insert({1, int(a), int(b)});
+    }
+  return out;
+}
+
 PairSet listed(const std::vector<contact::ElementPair>& pairs) {
   PairSet out;
   for (const auto& q : pairs) {
@@ -149,5 +182,60 @@ TEST_CASE("SurfaceCandidates: full() and refresh() list every overlapping pair o
     round(400, 0.03);
     CHECK(broad.full_count() == 2);
     round(2, 0.03);
+  }
+}
+
+// Without self-collision full() queries only the obstacles' elements: it must still list every
+// pair that has one (a capsule's axis and ends, a ball's centre, a mesh's points, edges and
+// triangles, all among the crumpled cloth), and refresh() must keep every one.
+TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacle's element") {
+  std::mt19937 rng(5);
+  Crumpled c = crumpled(rng);
+  massspring::Edges edges;
+  {
+    std::vector<std::pair<int, int>> list;
+    massspring::detail::triangle_edges(c.triangles, list);
+    edges.resize(Eigen::Index(list.size()), 2);
+    for (std::size_t k = 0; k < list.size(); ++k)
+      edges.row(Eigen::Index(k)) << list[k].first, list[k].second;
+  }
+  const std::vector<int> pinned;
+  const std::optional<contact::SelfCollision<double>> off;
+  contact::ColliderSet<double> colliders;
+  using Collider = contact::Collider<double>;
+  using Point = Eigen::Vector3d;
+  colliders.add(Collider::capsule(Point(-0.02, -0.05, 0), Point(0.12, -0.03, 0.002), 0.004));
+  colliders.add(Collider::sphere(Point(0.05, -0.02, 0.003), 0.01));
+  massspring::Points<double> mesh(4, 3);
+  mesh << 0.02, -0.07, -0.01, 0.08, -0.07, -0.01, 0.05, -0.02, -0.01, 0.05, -0.05, 0.02;
+  massspring::Triangles faces(4, 3);
+  faces << 0, 1, 2, 0, 1, 3, 1, 2, 3, 2, 0, 3;
+  colliders.add(Collider::mesh(mesh, faces));
+  const contact::SurfaceContactInput<double> in{c.x0,   c.x1,        c.v,   1.0 / 30, c.masses,
+                                                pinned, c.triangles, edges, off,      colliders};
+  contact::SurfaceElements<double> e;
+  e.setup(in);
+  const double grow = 0.002, margin = 0.002;
+  contact::SurfaceCandidates<double> broad;
+  broad.full(e, grow, margin);
+  const PairSet want = brute_force_obstacles(e, grow);
+  REQUIRE(want.size() > 20);  // the obstacles meet the cloth
+  CHECK(listed(broad.pairs()) == want);
+
+  // Rounds that move some cloth points, small and large: still every pair.
+  std::vector<char> moved(std::size_t(e.x1.rows()), 0);
+  std::uniform_int_distribution<int> pick(0, int(c.x1.rows()) - 1);  // cloth points only
+  for (const double step : {margin / 4, 0.03}) {
+    std::fill(moved.begin(), moved.end(), char(0));
+    std::uniform_real_distribution<double> by(-step, step);
+    for (int k = 0; k < 5; ++k) {
+      const int i = pick(rng);
+      for (int a = 0; a < 3; ++a) e.x1(i, a) += by(rng);
+      moved[std::size_t(i)] = 1;
+    }
+    broad.refresh(e, moved);
+    const PairSet got = listed(broad.pairs());
+    const PairSet now = brute_force_obstacles(e, grow);
+    CHECK(std::includes(got.begin(), got.end(), now.begin(), now.end()));
   }
 }

@@ -12,7 +12,8 @@
 /// cloth without self-collision) are left out.
 ///
 /// full() hashes every element (contact/broad_phase/box_hash.hpp) with its box grown by a further
-/// margin m, and lists the pairs of the true boxes. refresh() then updates the list after a round
+/// margin m, and lists the pairs of the true boxes; without self-collision only the obstacles'
+/// elements are queried, as every pair then has one. refresh() then updates the list after a round
 /// moved the points flagged in `moved`: the pairs that have no moved point keep their boxes and
 /// stay; the elements that have a moved point are queried again with their new boxes against the
 /// stored ones. While a moved element's box stays inside its stored box (grown by m), the stored
@@ -63,10 +64,15 @@ class SurfaceCandidates {
     Scalar cell = extent / Scalar(std::max<std::size_t>(1, triangles_.stored.size()));
     if (!(cell > 0)) cell = 1;
     cell_ = cell;
-    points_hashed_ = false;  // hashed when refresh() first needs it
-    triangles_.hash.build(triangles_.stored, cell);
-    edges_.hash.build(edges_.stored, cell);
+    // Each hash is built when a query first needs it (refresh() too).
+    points_.hashed = triangles_.hashed = edges_.hashed = false;
     pairs_.clear();
+    if (!e.self) {
+      obstacle_pairs(e);
+      return;
+    }
+    triangles_.hash_boxes(cell_);
+    edges_.hash_boxes(cell_);
     // The true boxes are the stored ones shrunk by the margin.
     for (std::size_t v = 0; v < e.points.size(); ++v) {
       const Box& box = points_.stored[v];
@@ -99,16 +105,15 @@ class SurfaceCandidates {
                          : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
     };
     pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), stale), pairs_.end());
+    if (!points_.moved_ids.empty()) triangles_.hash_boxes(cell_);
     for (int v : points_.moved_ids)
       triangles_.query(points_.now[std::size_t(v)], [&](int t) { add_point_triangle(e, v, t); });
-    if (!points_hashed_ && !triangles_.moved_ids.empty()) {
-      points_.hash.build(points_.stored, cell_);
-      points_hashed_ = true;
-    }
+    if (!triangles_.moved_ids.empty()) points_.hash_boxes(cell_);
     for (int t : triangles_.moved_ids)
       points_.query(triangles_.now[std::size_t(t)], [&](int v) {
         if (!points_.moved[std::size_t(v)]) add_point_triangle(e, v, t);
       });
+    if (!edges_.moved_ids.empty()) edges_.hash_boxes(cell_);
     for (int a : edges_.moved_ids)
       edges_.query(edges_.now[std::size_t(a)], [&](int b) {
         if (!edges_.moved[std::size_t(b)] || b > a) add_edge_edge(e, a, b);
@@ -126,6 +131,14 @@ class SurfaceCandidates {
     std::vector<char> moved, escaped;
     std::vector<int> moved_ids, escaped_ids;
     BoxHash<Scalar> hash;
+    bool hashed = false;  // hash holds `stored` as full() left it
+
+    // Hashes the stored boxes, unless done since the last full().
+    void hash_boxes(Scalar cell) {
+      if (hashed) return;
+      hash.build(stored, cell);
+      hashed = true;
+    }
 
     void store(const Elements& e, const std::vector<Element>& elements, int count, Scalar grow,
                Scalar margin) {
@@ -170,6 +183,44 @@ class SurfaceCandidates {
     }
   };
 
+  // full()'s pairs without self-collision, where every pair has an obstacle's element: only the
+  // obstacles' points, triangles and edges are queried (the cloth's with one another would all be
+  // rejected by pair_gap()), the cloth's points through their own hash.
+  void obstacle_pairs(const Elements& e) {
+    for (std::size_t v = 0; v < e.points.size(); ++v) {
+      if (e.points[v].owner < 0) continue;
+      triangles_.hash_boxes(cell_);
+      const Box& box = points_.stored[v];
+      triangles_.hash.query(box, [&](int t) {
+        if (overlap_shrunk(box, triangles_.stored[std::size_t(t)]))
+          add_point_triangle(e, int(v), t);
+      });
+    }
+    bool obstacle_triangles = false;
+    for (const Element& t : e.triangles) obstacle_triangles = obstacle_triangles || t.owner >= 0;
+    if (obstacle_triangles) {
+      points_.hash_boxes(cell_);
+      for (std::size_t t = 0; t < e.triangles.size(); ++t) {
+        if (e.triangles[t].owner < 0) continue;
+        const Box& box = triangles_.stored[t];
+        points_.hash.query(box, [&](int v) {
+          if (e.points[std::size_t(v)].owner < 0 &&
+              overlap_shrunk(points_.stored[std::size_t(v)], box))
+            add_point_triangle(e, v, int(t));
+        });
+      }
+    }
+    for (std::size_t a = 0; a < e.edges.size(); ++a) {
+      if (e.edges[a].owner < 0) continue;
+      edges_.hash_boxes(cell_);
+      const Box& box = edges_.stored[a];
+      edges_.hash.query(box, [&](int b) {
+        if (e.edges[std::size_t(b)].owner < 0 && overlap_shrunk(box, edges_.stored[std::size_t(b)]))
+          add_edge_edge(e, int(a), b);
+      });
+    }
+  }
+
   static bool inside(const Box& b, const Box& outer) {
     return (outer.lo.array() <= b.lo.array()).all() && (b.hi.array() <= outer.hi.array()).all();
   }
@@ -197,7 +248,6 @@ class SurfaceCandidates {
   }
 
   Scalar grow_ = 0, margin_ = 0, cell_ = 1;
-  bool points_hashed_ = false;
   long full_count_ = 0;
   Layer points_, triangles_, edges_;
   std::vector<ElementPair> pairs_;
