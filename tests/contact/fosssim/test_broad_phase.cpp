@@ -1,12 +1,12 @@
-// contact/fosssim/broad_phase.hpp: the grid ("contest") gives exactly the contacts that all pairs give,
-// on random scenes of particles, edges (some long) and planes, for static and swept boxes; its
-// candidates are exactly the pairs whose boxes overlap (brute force); the visiting order is
+// contact/fosssim/broad_phase.hpp: the grid ("contest") gives exactly the contacts that all pairs
+// give, on random scenes of particles, edges (some long) and planes, for static and swept boxes;
+// its candidates are exactly the pairs whose boxes overlap (brute force); the visiting order is
 // FOSSSim's.
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <massspring/contact/fosssim/broad_phase.hpp>
 #include <massspring/contact/distance/point_segment.hpp>
+#include <massspring/contact/fosssim/broad_phase.hpp>
 #include <random>
 #include <set>
 #include <tuple>

@@ -1,5 +1,5 @@
-// contact/fosssim/continuous_time.hpp: a particle fast enough to cross an edge within one step is caught
-// by continuous-time detection and missed by the simple (end-of-step) one, which is why
+// contact/fosssim/continuous_time.hpp: a particle fast enough to cross an edge within one step is
+// caught by continuous-time detection and missed by the simple (end-of-step) one, which is why
 // FOSSSim's Theme 2 has both; the response reflects the mean velocity with restitution e and
 // moves the end position by dt times the impulse.
 #include <doctest/doctest.h>

@@ -1,8 +1,8 @@
-// contact/response/impact_zones.hpp and contact/fosssim/hybrid.hpp: a rigid zone keeps its shape and its linear
-// momentum and turns by FOSSSim's angle L_z / I_zz in the plane; a zone with a fixed particle
-// or a plane stays where it started, at rest; two equal particles colliding head-on with no
-// impulse rounds (maxiters = 0) end as one body (velocities averaged), with enough rounds and
-// e = 1 they exchange velocities; zones merge through shared particles.
+// contact/response/impact_zones.hpp and contact/fosssim/hybrid.hpp: a rigid zone keeps its shape
+// and its linear momentum and turns by FOSSSim's angle L_z / I_zz in the plane; a zone with a fixed
+// particle or a plane stays where it started, at rest; two equal particles colliding head-on with
+// no impulse rounds (maxiters = 0) end as one body (velocities averaged), with enough rounds and e
+// = 1 they exchange velocities; zones merge through shared particles.
 #include <doctest/doctest.h>
 
 #include <array>

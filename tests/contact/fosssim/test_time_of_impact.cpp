@@ -1,7 +1,7 @@
-// contact/fosssim/polynomial_intervals.hpp and contact/fosssim/time_of_impact.hpp against closed forms: the
-// first time at which polynomials are all positive; the time of impact of two particles closing
-// at a known speed, of a particle reaching a plane, of a particle reaching an edge's interior and
-// an edge's end; no impact when the motion misses or separates.
+// contact/fosssim/polynomial_intervals.hpp and contact/fosssim/time_of_impact.hpp against closed
+// forms: the first time at which polynomials are all positive; the time of impact of two particles
+// closing at a known speed, of a particle reaching a plane, of a particle reaching an edge's
+// interior and an edge's end; no impact when the motion misses or separates.
 #include <doctest/doctest.h>
 
 #include <cmath>

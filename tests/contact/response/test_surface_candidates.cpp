@@ -32,35 +32,10 @@ Box swept(const massspring::Points<double>& x0, const massspring::Points<double>
   return b;
 }
 
-// Every pair of the cloth (self-collision on, no obstacle) whose boxes overlap.
+// Every pair SurfaceElements::pair_gap() tests (cloth-cloth only with self-collision; never
+// obstacle-obstacle) whose boxes overlap, each element's box grown as SurfaceElements::grow_of()
+// says (the cloth's by g, an obstacle's by its gap), sharing no point.
 PairSet brute_force(const contact::SurfaceElements<double>& e, double g) {
-  PairSet out;
-  const auto& x0 = e.x0;
-  const auto& x1 = e.x1;
-  for (std::size_t v = 0; v < e.points.size(); ++v) {
-    const int i = e.points[v].p[0];
-    const Box bp = swept(x0, x1, {i}, g);
-    for (std::size_t t = 0; t < e.triangles.size(); ++t) {
-      const auto& c = e.triangles[t].p;
-      if (i == c[0] || i == c[1] || i == c[2]) continue;
-      if (bp.overlaps(swept(x0, x1, {c[0], c[1], c[2]}, g))) out.insert({0, int(v), int(t)});
-    }
-  }
-  for (std::size_t a = 0; a < e.edges.size(); ++a)
-    for (std::size_t b = a + 1; b < e.edges.size(); ++b) {
-      const auto& p = e.edges[a].p;
-      const auto& q = e.edges[b].p;
-      if (p[0] == q[0] || p[0] == q[1] || p[1] == q[0] || p[1] == q[1]) continue;
-      if (swept(x0, x1, {p[0], p[1]}, g).overlaps(swept(x0, x1, {q[0], q[1]}, g)))
-        out.insert({1, int(a), int(b)});
-    }
-  return out;
-}
-
-// Every pair with an obstacle's element whose boxes overlap, each element's box grown as
-// SurfaceElements::grow_of() says (the cloth's by g, an obstacle's by its gap), the pairs
-// SurfaceElements::pair_gap() tests (no cloth-cloth pair: self-collision off).
-PairSet brute_force_obstacles(const contact::SurfaceElements<double>& e, double g) {
   PairSet out;
   const auto& x0 = e.x0;
   const auto& x1 = e.x1;
@@ -218,7 +193,7 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
   const double grow = 0.002, margin = 0.002;
   contact::SurfaceCandidates<double> broad;
   broad.full(e, grow, margin);
-  const PairSet want = brute_force_obstacles(e, grow);
+  const PairSet want = brute_force(e, grow);
   REQUIRE(want.size() > 20);  // the obstacles meet the cloth
   CHECK(listed(broad.pairs()) == want);
 
@@ -235,7 +210,7 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
     }
     broad.refresh(e, moved);
     const PairSet got = listed(broad.pairs());
-    const PairSet now = brute_force_obstacles(e, grow);
+    const PairSet now = brute_force(e, grow);
     CHECK(std::includes(got.begin(), got.end(), now.begin(), now.end()));
   }
 }
