@@ -280,21 +280,20 @@ def summary_checks(grid, bound, meta):
                  f"{sum(r['outcome'] == 'stable' for r in below)} of {len(below)} stable")
     w("")
     w("By where they ran: " + "; ".join(parts) + ".")
-    bad = [r for r in grid + bound if r["at_or_below_bound"] == "1" and r["outcome"] != "stable"]
-    if bad:
-        w("")
-        w("Not stable at or below stable_time_step:")
-        w("")
-        for r in bad:
-            w(f"- {failure_line(r)}")
-    over = [r for r in bound if r["at_or_below_bound"] == "0"
-            and r["outcome"] not in ("stable", "skipped")]
-    if over:
-        w("")
-        w("Not stable at the factors above stable_time_step (the margin the safety factor buys):")
-        w("")
-        for r in over:
-            w(f"- {failure_line(r)}")
+
+    def failures(title, rows):
+        if rows:
+            w("")
+            w(title)
+            w("")
+            for r in rows:
+                w(f"- {failure_line(r)}")
+
+    failures("Not stable at or below stable_time_step:",
+             [r for r in grid + bound if r["at_or_below_bound"] == "1" and r["outcome"] != "stable"])
+    failures("Not stable at the factors above stable_time_step (the margin the safety factor buys):",
+             [r for r in bound if r["at_or_below_bound"] == "0"
+              and r["outcome"] not in ("stable", "skipped")])
     # Known cases.
     w("")
     w("Known cases:")

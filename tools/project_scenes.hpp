@@ -106,12 +106,10 @@ inline std::vector<std::pair<std::string, SceneDescription<double>>> project_sce
   }
   {  // pole: a hanging 1.2 m x 0.8 m flag pinned along its top edge, pressed by a horizontal pole
      // that turns about its axis (2 rad/s, friction 0.8) and winds the cloth around it
-    ClothOptions o;
-    o.columns = 31;
+    ClothOptions o = hanging_cloth_recipe(31);
     o.rows = 21;
     o.width = 1.2;
     o.height = 0.8;
-    o.plane = ClothPlane::Vertical;
     o.pins = ClothPins::TopEdge;
     SceneDescription<double> pole = make_cloth(o);
     pole.vertices.col(1).array() += 1.5;

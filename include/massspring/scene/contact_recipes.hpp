@@ -19,28 +19,29 @@
 #include "massspring/contact/colliders/collider.hpp"
 #include "massspring/scene/cloth.hpp"
 #include "massspring/scene/collider_description.hpp"
+#include "massspring/scene/recipes.hpp"
 #include "massspring/scene/scene_description.hpp"
 
 namespace massspring {
 
 namespace detail {
 
-/// @brief The cloth of the contact scenes (see the file): columns x rows points over
-/// width x depth [m], horizontal, centred above the origin at height y.
-inline SceneDescription<double> contact_cloth(int columns, int rows, double width, double depth,
-                                              double y) {
-  ClothOptions o;
+/// @brief The options of the contact scenes' cloths (see the file): the drape's cloth
+/// (drape_recipe()) at columns x rows points over width x depth [m], horizontal, at the origin.
+inline ClothOptions contact_cloth_options(int columns, int rows, double width, double depth) {
+  ClothOptions o = drape_recipe();
   o.columns = columns;
   o.rows = rows;
   o.width = width;
   o.height = depth;
-  o.shear = ClothShear::One;
-  o.bending = true;
-  o.pins = ClothPins::None;
-  o.plane = ClothPlane::Horizontal;
-  o.stiffness = 1000;
-  o.mass.reset();
-  SceneDescription<double> cloth = make_cloth(o);
+  return o;
+}
+
+/// @brief The cloth of the contact scenes (see the file): columns x rows points over
+/// width x depth [m], horizontal, centred above the origin at height y.
+inline SceneDescription<double> contact_cloth(int columns, int rows, double width, double depth,
+                                              double y) {
+  SceneDescription<double> cloth = make_cloth(contact_cloth_options(columns, rows, width, depth));
   cloth.vertices.col(0).array() -= width / 2;
   cloth.vertices.col(1).array() += y;
   cloth.vertices.col(2).array() -= depth / 2;
@@ -113,17 +114,8 @@ inline SceneDescription<double> clothesline_scene() {
 /// towards +z so that it buckles out of its plane instead of crumpling within it (an exactly
 /// upright ribbon stays in the plane z = 0). Collider: the floor.
 inline SceneDescription<double> ribbon_pile_scene() {
-  ClothOptions o;
-  o.columns = 9;
-  o.rows = 61;
-  o.width = 0.24;
-  o.height = 1.8;
-  o.shear = ClothShear::One;
-  o.bending = true;
-  o.pins = ClothPins::None;
+  ClothOptions o = detail::contact_cloth_options(9, 61, 0.24, 1.8);
   o.plane = ClothPlane::Vertical;
-  o.stiffness = 1000;
-  o.mass.reset();
   SceneDescription<double> scene = make_cloth(o);
   const double tilt = 0.05;
   for (Eigen::Index i = 0; i < scene.vertices.rows(); ++i) {

@@ -67,18 +67,13 @@ inline ClothOptions curtain_recipe() {
 }
 
 /// @brief A flag like the JSON+OBJ scenes': 60 x 50 points over 1.2 m x 1 m, lying flat, quads with
-/// both diagonals, held at two corners, k = 1000 N/m, lumped Voronoi masses (1.2 kg in all).
+/// both diagonals, held at two corners, k = 1000 N/m, lumped Voronoi masses (1.2 kg in all): the
+/// hanging cloth's springs, pins and masses at another size, laid down.
 inline ClothOptions flag_recipe() {
-  ClothOptions flag;
-  flag.columns = 60;
+  ClothOptions flag = hanging_cloth_recipe(60);
   flag.rows = 50;
   flag.width = 1.2;
-  flag.height = 1.0;
-  flag.shear = ClothShear::Both;
   flag.plane = ClothPlane::Horizontal;
-  flag.pins = ClothPins::TopCorners;
-  flag.stiffness = 1000;
-  flag.mass.reset();
   return flag;
 }
 

@@ -250,20 +250,11 @@ class Collider {
   void end_step() {
     previous_rotation_ = rotation_;
     previous_translation_ = translation_;
-    rotation_ = end_rotation_;
-    translation_ = end_translation_;
-    motion_ = 0;
-    refresh();
-  }  /// @brief Back to the pose before the last end_step() (a step rejected after it was
-  /// committed, e.g. by DivergenceGuard).
-  void undo_step() {
-    rotation_ = previous_rotation_;
-    translation_ = previous_translation_;
-    end_rotation_ = rotation_;
-    end_translation_ = translation_;
-    motion_ = 0;
-    refresh();
+    rest_at(end_rotation_, end_translation_);
   }
+  /// @brief Back to the pose before the last end_step() (a step rejected after it was
+  /// committed, e.g. by DivergenceGuard).
+  void undo_step() { rest_at(previous_rotation_, previous_translation_); }
 
   /// @brief True when no point of the path x_start -> x_end can be in contact: a quick test with a
   /// margin far above any rounding (contact() starts with it; slop adds to the margin).
@@ -347,6 +338,15 @@ class Collider {
     previous_translation_ = reference;
   }
 
+  // Between steps at this pose: the current and the end-of-step pose both this one, no motion.
+  void rest_at(const M3& rotation, const V3& translation) {
+    rotation_ = rotation;
+    translation_ = translation;
+    end_rotation_ = rotation;
+    end_translation_ = translation;
+    motion_ = 0;
+    refresh();
+  }
   // The quick rejection contact() starts with, in world coordinates at the end pose: a plane's
   // world normal and offset, or a sphere about the reference point that holds the shape and its
   // contact zone. `reach_` includes a margin far above any slop, so that it only filters.
