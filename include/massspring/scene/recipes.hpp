@@ -13,29 +13,11 @@ namespace massspring {
 
 /// @brief A chain like the JSON+OBJ scenes' horizontal chain: 10 points over 1 m along +x, both
 /// ends pinned, k = 500 N/m, 1 kg per point.
-inline ChainOptions chain_recipe() {
-  ChainOptions chain;
-  chain.points = 10;
-  chain.length = 1.0;
-  chain.pins = ChainPins::BothEnds;
-  chain.stiffness = 500;
-  chain.mass = 1;
-  return chain;
-}
+inline ChainOptions chain_recipe() { return ChainOptions{}; }  // ChainOptions' defaults
 
 /// @brief A net like the JSON+OBJ scenes': 8 x 8 points over 1 m x 1 m, horizontal, hung by its
 /// four corners, k = 300 N/m, 1 kg per point.
-inline NetOptions net_recipe() {
-  NetOptions net;
-  net.columns = 8;
-  net.rows = 8;
-  net.width = 1.0;
-  net.depth = 1.0;
-  net.pins = NetPins::Corners;
-  net.stiffness = 300;
-  net.mass = 1;
-  return net;
-}
+inline NetOptions net_recipe() { return NetOptions{}; }  // NetOptions' defaults
 
 /// @brief A square cloth hanging from its two top corners: n x n points over 1 m x 1 m,
 /// vertical, quads with both diagonals, k = 1000 N/m, lumped Voronoi masses (1 kg in all).

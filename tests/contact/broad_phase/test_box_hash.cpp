@@ -74,3 +74,24 @@ TEST_CASE("BoxHash: a box far larger than the cells is listed, not hashed, and s
       REQUIRE(seen[i] == int(boxes[i].overlaps(query)));
   }
 }
+
+TEST_CASE("BoxHash: with a bound, exactly the overlapping boxes above it, hashed or large") {
+  // Each stored box queried with its own index lists every overlapping pair once (brute force).
+  std::mt19937 rng(13);
+  std::vector<Box> boxes;
+  for (int i = 0; i < 300; ++i) boxes.push_back(random_box(rng, 1.0, 0.3));
+  boxes[17] = {Eigen::Vector3d(-50, -50, -50), Eigen::Vector3d(50, 50, 50)};  // too large to hash
+  boxes[250] = {Eigen::Vector3d(-0.5, -60, -0.5), Eigen::Vector3d(0.5, 60, 0.5)};
+  massspring::contact::BoxHash<double> hash;
+  for (const double cell : {0.005, 0.1, 3.0}) {
+    CAPTURE(cell);
+    hash.build(boxes, cell);
+    std::vector<int> pair_count(boxes.size() * boxes.size(), 0);
+    for (std::size_t a = 0; a < boxes.size(); ++a)
+      hash.query(
+          boxes[a], [&](int b) { ++pair_count[a * boxes.size() + std::size_t(b)]; }, int(a));
+    for (std::size_t a = 0; a < boxes.size(); ++a)
+      for (std::size_t b = 0; b < boxes.size(); ++b)
+        REQUIRE(pair_count[a * boxes.size() + b] == int(b > a && boxes[a].overlaps(boxes[b])));
+  }
+}

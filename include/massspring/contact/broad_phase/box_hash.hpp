@@ -83,12 +83,15 @@ class BoxHash {
     query_ = 0;
   }
 
-  /// @brief Calls visit(i) once for each stored box i that overlaps `q`.
+  /// @brief Calls visit(i) once for each stored box i > `above` that overlaps `q` (every one with
+  /// the default -1). A bucket holds its boxes in ascending order and is read from its end, so
+  /// the boxes at or below `above` cost nothing: querying each box of the stored set with its own
+  /// index lists each overlapping pair once, at half the cost.
   template <class Visit>
-  void query(const Box& q, Visit&& visit) {
+  void query(const Box& q, Visit&& visit, int above = -1) {
     const auto& boxes = *boxes_;
     if (too_large(q)) {
-      for (std::size_t i = 0; i < boxes.size(); ++i)
+      for (std::size_t i = std::size_t(above + 1); i < boxes.size(); ++i)
         if (boxes[i].overlaps(q)) visit(int(i));
       return;
     }
@@ -98,15 +101,16 @@ class BoxHash {
     }
     for_each_cell(q, [&](std::uint64_t key) {
       key &= mask_;
-      for (std::uint32_t k = start_[key]; k < start_[key + 1]; ++k) {
-        const int i = ids_[k];
+      for (std::uint32_t k = start_[key + 1]; k > start_[key];) {
+        const int i = ids_[--k];
+        if (i <= above) break;
         if (stamp_[std::size_t(i)] == query_) continue;
         stamp_[std::size_t(i)] = query_;
         if (boxes[std::size_t(i)].overlaps(q)) visit(i);
       }
     });
     for (int i : large_)
-      if (boxes[std::size_t(i)].overlaps(q)) visit(i);
+      if (i > above && boxes[std::size_t(i)].overlaps(q)) visit(i);
   }
 
  private:

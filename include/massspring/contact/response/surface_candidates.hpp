@@ -83,10 +83,12 @@ class SurfaceCandidates {
     }
     for (std::size_t a = 0; a < e.edges.size(); ++a) {
       const Box& box = edges_.stored[a];
-      edges_.hash.query(box, [&](int b) {
-        if (b > int(a) && overlap_shrunk(box, edges_.stored[std::size_t(b)]))
-          add_edge_edge(e, int(a), b);
-      });
+      edges_.hash.query(
+          box,
+          [&](int b) {
+            if (overlap_shrunk(box, edges_.stored[std::size_t(b)])) add_edge_edge(e, int(a), b);
+          },
+          int(a));
     }
   }
 
