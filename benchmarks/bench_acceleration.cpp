@@ -1,8 +1,8 @@
 // Time to a given error: FastMassSpring with Chebyshev (Wang 2015) and Anderson (Peng et al. 2018)
 // acceleration, each run for as many iterations as reach the step error of 50 plain iterations,
-// against the seed-faithful reference's 50 (reference/seed/seed_reference.hpp) and our plain 50.
-// Scenes: the curtain (gravity m g) and the assignment's skirt (9.8 N per point), settings as in
-// support/scenes.hpp (dt = 1/30 s, penalty pins w = 1e10).
+// against the reference solver's 50 (reference/seed/seed_reference.hpp) and our plain 50.
+// Scenes: the curtain (gravity m g) and the JSON+OBJ scenes' skirt (9.8 N per point), settings as
+// in support/scenes.hpp (dt = 1/30 s, penalty pins w = 1e10).
 //
 // Set-up, untimed: 10 plain steps from rest give the start state; from it, E(x_0), E after 50
 // plain iterations, and E* (the lowest of 3000 Chebyshev and 3000 Anderson iterations) are
@@ -10,11 +10,11 @@
 // step error of k iterations is (E(x_k) - E*) / (E(x_0) - E*), E the implicit-Euler objective
 // of DESIGN.md. Every timed step starts from the start state (reset untimed).
 //
-// Benchmarks (`Step/<solver>/<scene>`): Seed, Sparse (plain, 50 iterations), Chebyshev and
-// Anderson (k iterations each), ChebyshevThreads2 (Chebyshev with options.threads = 2, when built
-// with OpenMP; read its real_time). Counters besides support/timing.hpp's: plain_error (the step
-// error of 50 plain iterations) on every run, rho (Chebyshev's estimated spectral radius) on the
-// Chebyshev runs.
+// Benchmarks (`Step/<solver>/<scene>`): Seed (the reference solver), Sparse (plain, 50
+// iterations), Chebyshev and Anderson (k iterations each), ChebyshevThreads2 (Chebyshev with
+// options.threads = 2, when built with OpenMP; read its real_time). Counters besides
+// support/timing.hpp's: plain_error (the step error of 50 plain iterations) on every run, rho
+// (Chebyshev's estimated spectral radius) on the Chebyshev runs.
 //
 //   bench_acceleration --benchmark_out=acceleration.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>

@@ -1,11 +1,11 @@
-// What contact with obstacles costs (contact/colliders/colliders.hpp, issue 22's cost items).
+// What contact with obstacles costs (contact/colliders/colliders.hpp).
 //
 // - Drape/<integrator>/colliders:{0,1}: one step of the drape (scene/recipes.hpp: an 81 x 81
 //   cloth over a sphere onto a floor) with and without the two colliders, from the same state: the
 //   cloth after 1.2 s of falling with the colliders (resting on the sphere, its edges on the
-//   floor), restored before every step. FastMassSpring with 10 plain iterations (the issue's
-//   figure: with/without <= 1.3), the same with the contact term inside the iteration
-//   (ContactTerm: options.contact_weight = 1), Chebyshev, and symplectic Euler at its stable step.
+//   floor), restored before every step. FastMassSpring with 10 plain iterations, the same with
+//   the contact term inside the iteration (ContactTerm: options.contact_weight = 1), Chebyshev,
+//   and symplectic Euler at its stable step.
 // - MeshQuery/<triangles>: the mesh collider's queries (the bounding-volume hierarchy, then the
 //   closest point within the thickness and the segment's first crossing) for 4096 points
 //   against a closed mesh (a subdivided icosahedron) of 80 .. 81920 triangles: time per point

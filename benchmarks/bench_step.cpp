@@ -1,24 +1,24 @@
 // What one local-global step and one iteration cost: FastMassSpring (Sparse, double, penalty pins
-// as the seed) against the floor of an iteration and against the seed-faithful reference
-// (reference/seed/seed_reference.hpp: the assignment's formulas with Eigen's sparse products and
-// SimplicialLLT::solve). Scenes and settings: support/scenes.hpp (cloth32, cloth64, cloth128,
+// as the reference solver's) against the floor of an iteration and against the reference solver
+// (reference/seed/seed_reference.hpp: the same step written plainly, with Eigen's sparse products
+// and SimplicialLLT::solve). Scenes and settings: support/scenes.hpp (cloth32, cloth64, cloth128,
 // curtain, flag, skirt; dt = 1/30 s, 50 iterations per step).
 //
 // Benchmarks (`<what>/<solver>/<scene>`):
 //   Precompute/Sparse, Precompute/Seed   build Q and factorize (ours in the order
-//   FillOrdering::Auto
-//                                        picks, the seed in AMD's)
+//                                        FillOrdering::Auto picks, the reference solver in
+//                                        AMD's)
 //   Step/Sparse, Step/Seed               one step of 50 iterations
 //   Floor/Sparse                         one forward and one back substitution with our factor,
 //                                        n x 3, in the factor's row order
-//   Floor/EigenSolve                     SimplicialLLT::solve on the seed's factor, n x 3 (the
-//                                        seed's global step without its local step)
+//   Floor/EigenSolve                     SimplicialLLT::solve on the reference solver's factor,
+//                                        n x 3 (its global step without its local step)
 //   Paired/Sparse                        each step followed by as many substitutions with that
 //                                        step's own factor, both on the thread's CPU clock
-// Counters besides support/timing.hpp's: first_step_diff on Step/Seed (|X_ours - X_seed| /
-// |X_seed| after one step from rest; the program warns above 1e-9), and on Paired/Sparse step_ms
-// (per step), floor_ms (per substitution) and it_per_floor (the step's time per iteration over
-// the substitution's, summed over the repetition).
+// Counters besides support/timing.hpp's: first_step_diff on Step/Seed (|X_ours - X_ref| /
+// |X_ref| after one step from rest, X_ref the reference solver's; the program warns above 1e-9),
+// and on Paired/Sparse step_ms (per step), floor_ms (per substitution) and it_per_floor (the
+// step's time per iteration over the substitution's, summed over the repetition).
 //
 //   build/benchmarks/bench_step --benchmark_out=step.json --benchmark_out_format=json
 //   build/benchmarks/bench_step --benchmark_filter='^Paired/'   # iteration / floor alone
@@ -89,7 +89,7 @@ void bm_paired(benchmark::State& state, const Scene& scene, const SparseSystem& 
   set_counters(state, proto, solver.factor_nonzeros(), iterations / double(state.iterations()));
 }
 
-// Eigen's own solve on the seed's factor: the seed's global step without its local step.
+// Eigen's own solve on the reference solver's factor: its global step without its local step.
 void bm_eigen_solve(benchmark::State& state, const Scene& scene, const SparseSystem& proto) {
   SeedFastMassSpring seed(seed_options(scene));
   if (!precompute_or_skip(state, seed, proto)) return;
@@ -103,7 +103,8 @@ void bm_eigen_solve(benchmark::State& state, const Scene& scene, const SparseSys
   set_counters(state, proto, seed.factor_nonzeros(), kIterations);
 }
 
-// |X_ours - X_seed| / |X_seed| after one step from rest, or -1 when either throws.
+// |X_ours - X_ref| / |X_ref| (X_ref: the reference solver's) after one step from rest, or -1 when
+// either throws.
 double first_step_difference(const Scene& scene) {
   try {
     SparseSystem system = *scene.sparse;
@@ -136,8 +137,8 @@ void register_benchmarks() {
     const double diff = first_step_difference(s);
     if (!(diff >= 0 && diff <= 1e-9))
       std::fprintf(stderr,
-                   "WARNING: %s: ours and the seed differ after one step (relative %.3g > 1e-9): "
-                   "the timings compare different computations\n",
+                   "WARNING: %s: ours and the reference solver differ after one step (relative "
+                   "%.3g > 1e-9): the timings compare different computations\n",
                    s.name.c_str(), diff);
     add(once, "Precompute", "Sparse", s,
         [sc](benchmark::State& st) { bm_precompute(st, *sc, *sc->sparse); });

@@ -2,9 +2,9 @@
 // of docs/performance.md ("Against Bullet"). Bullet's cloth as an engine developer would make it:
 // btSoftBodyHelpers::CreatePatch, 81 x 81 points, gendiags (structural links and one diagonal
 // per cell), no bending links, total mass 1.9 kg, in a btSoftRigidDynamicsWorld over a static
-// btSphereShape (r 0.5 m) and a static ground box (top at y = -1). The best-tuned setting issue
-// 32 quotes: 50 position iterations (m_cfg.piterations), collision margin 0.025 m, dt = 1/60 s,
-// one substep per frame. Friction: the soft body's kDF = 1 times the rigid bodies' 0.5, i.e. 0.5
+// btSphereShape (r 0.5 m) and a static ground box (top at y = -1). The best-tuned setting: 50
+// position iterations (m_cfg.piterations), collision margin 0.025 m, dt = 1/60 s, one substep per
+// frame. Friction: the soft body's kDF = 1 times the rigid bodies' 0.5, i.e. 0.5
 // as in massspring_drape; self-collision off (Bullet's default). Debian's libbullet-dev, single
 // precision, one thread.
 //

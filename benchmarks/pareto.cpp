@@ -1,4 +1,4 @@
-// Run time against error (issue 4; docs/benchmarks.md): every integrator over a sweep of time
+// Run time against error (docs/benchmarks.md): every integrator over a sweep of time
 // steps, and local-global over iteration counts and tolerances, on a chain, a net, 32x32 and 64x64
 // cloths and a circular orbit. Each run is one point (compute seconds per simulated second,
 // trajectory error at the end time against an RK4 reference). Then Liu et al. 2013's table: the
@@ -59,12 +59,11 @@ Scene under_gravity(std::string name, std::string description, const SceneDescri
 }
 
 Scene cloth_scene(int n, double stiffness) {
-  // Hanging from its top corners and released from its rest shape. With k = 50 N/m it stretches
-  // under its weight and swings (the points move 15-17% of the diagonal in 1 s); with the
-  // assignment's k = 1000 N/m it barely sags (32x32: 3e-5 of the diagonal), so not moving at all
-  // would already be "accurate". A cloth dropped from horizontal or pushed sideways was tried too:
-  // at k = 1000 its RK4 solution on 32x32 and 64x64 does not settle to 1e-9 when the step is
-  // halved (the stiff, undamped motion is chaotic within a second), so it has no reference.
+  // Hanging from its top corners and released from its rest shape. The stiffness must let it
+  // stretch under its weight and swing (k = 50 N/m does): at the JSON+OBJ scenes' k = 1000 N/m it
+  // barely sags, so not moving at all would already be "accurate". A cloth dropped from
+  // horizontal or pushed sideways at k = 1000 has no RK4 reference: its stiff, undamped motion is
+  // chaotic within a second, so halving the step does not converge the solution.
   ClothOptions o = hanging_cloth_recipe(n);
   o.stiffness = stiffness;
   char k[32];

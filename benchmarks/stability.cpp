@@ -1,5 +1,5 @@
-// Stability stress suite (issue 4, part 4): every integrator over stiffness x time step, on a chain
-// and a small cloth, each run stepped through a DivergenceGuard for a fixed simulated time.
+// Stability stress suite (docs/stability.md): every integrator over stiffness x time step, on a
+// chain and a small cloth, each run stepped through a DivergenceGuard for a fixed simulated time.
 //
 //   stability                 # the full suite: k = 1e0..1e8 N/m, 10 simulated seconds per run
 //   stability --quick         # smoke test: k = 1e0 and 1e8 N/m, 1 simulated second

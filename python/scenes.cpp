@@ -175,9 +175,10 @@ void bind_scenes(py::module_& m) {
   m.def("make_net", &make_net, py::arg("options") = NetOptions{}, "A horizontal net.");
   // The named recipes (scene/recipes.hpp), as options to change and pass to make_*.
   m.def("chain_recipe", &chain_recipe,
-        "The assignment's chain: 10 points over 1 m, both ends pinned, k = 500 N/m, 1 kg each.");
+        "The JSON+OBJ scenes' chain: 10 points over 1 m, both ends pinned, k = 500 N/m, 1 kg "
+        "each.");
   m.def("net_recipe", &net_recipe,
-        "The assignment's net: 8 x 8 points over 1 m x 1 m, corners pinned, k = 300 N/m, 1 kg "
+        "The JSON+OBJ scenes' net: 8 x 8 points over 1 m x 1 m, corners pinned, k = 300 N/m, 1 kg "
         "each.");
   m.def("hanging_cloth_recipe", &hanging_cloth_recipe, py::arg("n"),
         "An n x n cloth over 1 m x 1 m, vertical, both diagonals, top corners pinned, "

@@ -315,7 +315,7 @@ def plot_iteration(perf):
     w = 0.27
     ax.bar([i - w for i in x], ours, w, label="ours: one iteration", color="tab:blue")
     ax.bar(list(x), eigen, w, label="Eigen's SimplicialLLT::solve alone", color="tab:orange")
-    ax.bar([i + w for i in x], seed, w, label="seed-faithful: one iteration", color="tab:gray")
+    ax.bar([i + w for i in x], seed, w, label="reference solver: one iteration", color="tab:gray")
     ax.axhline(1, color="black", lw=0.8)
     ax.set_xticks(list(x))
     ax.set_xticklabels(scenes)

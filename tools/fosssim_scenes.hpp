@@ -1,7 +1,7 @@
 #pragma once
 // The project's own 2D scenes in FOSSSim's XML format, written by massspring-make-scenes into
 // examples/scenes_xml and run by scripts/examples.sh. Every number here is ours (none is copied
-// from the course's scenes).
+// from FOSSSim's scenes).
 
 #include <cmath>
 #include <string>
@@ -139,8 +139,8 @@ inline std::vector<std::pair<std::string, io::FosssimScene>> project_fosssim_sce
     scenes.emplace_back("damping_series", s);
   }
 
-  // Theme 2: the same box of balls under each collision response the course defines. A floor and
-  // two walls (half-planes, one with a normal of length 2: the course does not require unit
+  // Theme 2: the same box of balls under each collision response FOSSSim defines. A floor
+  // and two walls (half-planes, one with a normal of length 2: FOSSSim does not require unit
   // normals), a fixed ramp (an edge of radius 0.05 m between two fixed particles) and 12 balls of
   // radius 0.15 m (0.5 kg) dropped onto it with a spring-joined pair (k = 200 N/m) among them;
   // gravity 9.81 m/s^2, symplectic Euler, 4 s. COR 0.7 for the impulse responses.

@@ -58,8 +58,8 @@ inline ColliderDescription<double> icosphere(const Vector3<double>& c, double r)
 inline std::vector<std::pair<std::string, SceneDescription<double>>> project_scenes() {
   std::vector<std::pair<std::string, SceneDescription<double>>> scenes;
 
-  // A chain and a net like the assignment's, a flag like the assignment's and the curtain of Liu
-  // et al. 2013 (fast mass-spring): see massspring/scene/recipes.hpp.
+  // A chain, a net and a flag like the JSON+OBJ scenes' and the curtain of Liu et al. 2013 (fast
+  // mass-spring): see massspring/scene/recipes.hpp.
   scenes.emplace_back("chain", make_chain(chain_recipe()));
   scenes.emplace_back("net", make_net(net_recipe()));
   scenes.emplace_back("flag", make_cloth(flag_recipe()));

@@ -6,7 +6,7 @@
 //       (10 s at dt 1/30: 300 steps, a frame written every 3rd: frames 0, 3, ..., 300)
 //   massspring-simulate --generate cloth:60x50 --acceleration chebyshev --iterations 10
 //   massspring-simulate flag.json --gravity 0,0,0 --force 0,-9.8,0 --pins penalty
-//       (the assignment's conventions, for its own scenes)
+//       (the JSON+OBJ scenes' conventions, for those scenes)
 //   massspring-simulate examples/scenes_xml/orbit.xml --integrator forward-euler --every 10 --out f
 //       (an XML scene runs with the integrator it names, its dt, for its duration, unless the
 //        options say otherwise)
@@ -143,7 +143,7 @@ int main(int argc, char** argv) {
       "interrupted (130 SIGINT, 143 SIGTERM)."};
   app.get_formatter()->column_width(36);
   app.add_option("scene", c.scene,
-                 "Scene file: .json (+ .obj, the assignment's format; or a state saved by "
+                 "Scene file: .json (+ .obj, the JSON+OBJ scene format; or a state saved by "
                  "--save-state) or .xml (FOSSSim's)");
   app.add_option("--generate", c.generate,
                  "Generate the scene instead: cloth[:COLSxROWS], chain[:POINTS], net[:COLSxROWS]")

@@ -1,13 +1,13 @@
 #pragma once
 /// @file
 /// @brief The scenes and the set-up the local-global benchmarks (bench_step, bench_options,
-/// bench_acceleration, bench_threads) share: the assignment's settings, the cloth grids, Liu
-/// 2013's curtain and the assignment's flag and skirt, and FastMassSpring's options for them.
+/// bench_acceleration, bench_threads) share: the JSON+OBJ scenes' settings, the cloth grids, Liu
+/// 2013's curtain and the JSON+OBJ scenes' flag and skirt, and FastMassSpring's options for them.
 ///
-/// Settings throughout are the assignment's: dt = 1/30 s, a force (0, -9.8, 0) N on every point,
-/// penalty pins w = 1e10 N/m, 50 local-global iterations per step starting from the current
-/// positions. The curtain falls under gravity m g instead (as in Liu's paper: the assignment's
-/// 9.8 N on each of its 1.5e-4 kg points would pull it ~70 m in one frame).
+/// Settings throughout are the JSON+OBJ scenes' and the reference solver's: dt = 1/30 s, a force
+/// (0, -9.8, 0) N on every point, penalty pins w = 1e10 N/m, 50 local-global iterations per step
+/// starting from the current positions. The curtain falls under gravity m g instead (as in Liu's
+/// paper: 9.8 N on each of its 1.5e-4 kg points would pull it ~70 m in one frame).
 ///
 /// Scenes: `cloth<N>`, make_cloth() with N x N points (1 m x 1 m, quads with both diagonals, top
 /// corners pinned, k = 1000 N/m, Voronoi masses); `curtain` (massspring::curtain_recipe(): 6561
@@ -50,22 +50,22 @@ using test::SeedFastMassSpring;
 
 /// @brief Time step [s].
 inline constexpr double kDt = 1.0 / 30;
-/// @brief Local-global iterations per step (the seed's 50).
+/// @brief Local-global iterations per step (the reference solver's 50).
 inline constexpr int kIterations = 50;
-/// @brief Penalty weight of the pins [N/m] (the seed's).
+/// @brief Penalty weight of the pins [N/m] (the reference solver's).
 inline constexpr double kPenaltyWeight = 1e10;
 
 /// @brief One scene, in the storages and precisions a program asks for (null: not built).
 struct Scene {
   std::string name;
-  bool gravity = false;  ///< m g (the curtain) instead of the assignment's (0, -9.8, 0) N per point
+  bool gravity = false;  ///< m g (the curtain) instead of (0, -9.8, 0) N per point
   std::shared_ptr<const SparseSystem> sparse;
   std::shared_ptr<const DenseSystem> dense;
   std::shared_ptr<const FloatSystem> single;
 };
 
 /// @brief `system` with the scene's force added as a term: Gravity m g when `gravity`, else the
-/// assignment's ConstantForce of (0, -9.8, 0) N on every point.
+/// JSON+OBJ scenes' ConstantForce of (0, -9.8, 0) N on every point.
 template <class System>
 System with_force(System system, bool gravity) {
   using Scalar = typename System::Scalar;
@@ -118,7 +118,7 @@ inline Scene curtain_scene(Build build = {}) {
   return s;
 }
 
-/// @brief The assignment's scene `name` (flag, skirt), or nothing (with a note on stderr) when
+/// @brief The JSON+OBJ scene `name` (flag, skirt), or nothing (with a note on stderr) when
 /// its file or massspring::io is missing.
 inline std::vector<Scene> jacobson_scene(const std::string& name, Build build = {}) {
   const std::filesystem::path file = shared_dir() / "scenes" / "jacobson" / (name + ".json");
@@ -158,9 +158,9 @@ inline std::vector<Scene> standard_scenes(Build build = {}) {
   return scenes;
 }
 
-/// @brief FastMassSpring's options for `scene`, set up as the seed: kIterations iterations from
-/// the current positions, penalty pins of weight kPenaltyWeight (the scene's systems carry its
-/// force).
+/// @brief FastMassSpring's options for `scene`, set up as the reference solver: kIterations
+/// iterations from the current positions, penalty pins of weight kPenaltyWeight (the scene's
+/// systems carry its force).
 template <class Scalar>
 FastMassSpringOptions<Scalar> options_for(const Scene&) {
   FastMassSpringOptions<Scalar> o;
@@ -171,7 +171,7 @@ FastMassSpringOptions<Scalar> options_for(const Scene&) {
   return o;
 }
 
-/// @brief The seed-faithful reference's options for `scene` (the same step as options_for).
+/// @brief The reference solver's options for `scene` (the same step as options_for).
 inline SeedFastMassSpring::Options seed_options(const Scene& scene) {
   SeedFastMassSpring::Options o;
   o.iterations = kIterations;

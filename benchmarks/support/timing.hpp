@@ -2,8 +2,8 @@
 /// @file
 /// @brief The Google Benchmark bodies the local-global programs share: precompute, one step and
 /// the floor of an iteration (one forward and one back substitution with the factor of Q on the
-/// n x 3 right-hand side, in the factor's row order), for FastMassSpring and for the seed-faithful
-/// reference, and the registration settings.
+/// n x 3 right-hand side, in the factor's row order), for FastMassSpring and for the reference
+/// solver, and the registration settings.
 ///
 /// Names are `<what>/<solver>/<scene>`. Counters on every run: points, springs, nnz_L (stored
 /// entries of the factor of Q) and iterations_per_step (local-global iterations per step: for ours

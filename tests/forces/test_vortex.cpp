@@ -12,7 +12,7 @@ using Pts = massspring::Points<double>;
 using Vec = massspring::Vector<double>;
 }  // namespace
 
-TEST_CASE("VortexForce: the course's 2D formula, internal, velocity-dependent") {
+TEST_CASE("VortexForce: FOSSSim Theme 1's 2D formula, internal, velocity-dependent") {
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-2, 2);
   Pts x(3, 3), v(3, 3);

@@ -33,7 +33,8 @@ massspring::FastMassSpringOptions<double> assignment_options() {
   return o;
 }
 
-// |X_ours - X_seed| / |X_seed| after each of kFrames frames (Frobenius norms); the largest.
+// |X_ours - X_ref| / |X_ref| (X_ref: the reference solver's) after each of kFrames frames
+// (Frobenius norms); the largest.
 template <class System>
 double largest_relative_difference(System system, const SparseSystem& sparse) {
   using Scalar = typename System::Scalar;

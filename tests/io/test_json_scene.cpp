@@ -68,7 +68,7 @@ SceneDescription<Scalar> cast(const SceneDescription<double>& s) {
 
 }  // namespace
 
-TEST_CASE("read_json_scene reads the assignment's scenes as SOURCE.md lists them" *
+TEST_CASE("read_json_scene reads the JSON+OBJ scenes as SOURCE.md lists them" *
           doctest::skip(!massspring::test::have_jacobson())) {
   const auto dir = massspring::test::jacobson_dir();
   struct Expected {

@@ -74,12 +74,12 @@ void check_scene(const Expected& e) {
 
 }  // namespace
 
-TEST_CASE("load_scene loads every assignment scene with SOURCE.md's n, springs and pins (Sparse)" *
+TEST_CASE("load_scene loads every JSON+OBJ scene with SOURCE.md's n, springs and pins (Sparse)" *
           doctest::skip(!massspring::test::have_jacobson())) {
   for (const Expected& e : kScenes) check_scene<MassSpringSystem<double, Sparse>>(e);
 }
 
-TEST_CASE("load_scene loads the small assignment scenes into Dense and float systems" *
+TEST_CASE("load_scene loads the small JSON+OBJ scenes into Dense and float systems" *
           doctest::skip(!massspring::test::have_jacobson())) {
   for (const Expected& e : kScenes)
     if (e.small) {
@@ -168,7 +168,7 @@ TEST_CASE("load_scene puts the scene's path in front of make_system's errors") {
   CHECK(s.pinned() == std::vector<int>{3});
 }
 
-TEST_CASE("the assignment's flag and skirt run 100 frames with its settings, finite throughout" *
+TEST_CASE("the JSON+OBJ flag and skirt run 100 frames with their settings, finite throughout" *
           doctest::skip(!massspring::test::have_jacobson())) {
   // The JSON+OBJ scenes' conventions: dt = 1/30, a force of (0, -9.8, 0) N on every point,
   // penalty pins w = 1e10 at the rest positions, 50 iterations per step from the current positions.

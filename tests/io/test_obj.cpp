@@ -303,7 +303,7 @@ TEST_CASE("write_obj into a missing folder raises an Error naming the path") {
                        massspring::test::contains(file.string() + ": cannot write"), Error);
 }
 
-TEST_CASE("read_obj reads the assignment's OBJ files with the counts SOURCE.md lists" *
+TEST_CASE("read_obj reads the JSON+OBJ scenes' OBJ files with the counts SOURCE.md lists" *
           doctest::skip(!massspring::test::have_jacobson())) {
   struct Expected {
     const char* file;

@@ -152,7 +152,7 @@ TEST_CASE("voronoi_masses refuses faces of fewer than 3 vertices and indices out
                        doctest::Contains("face 0: vertex index 3 out of range [0, 3)"), Error);
 }
 
-TEST_CASE("voronoi_masses of the assignment's flag and skirt: SOURCE.md's totals and ranges" *
+TEST_CASE("voronoi_masses of the JSON+OBJ scenes' flag and skirt: SOURCE.md's totals and ranges" *
           doctest::skip(!massspring::test::have_jacobson())) {
   struct Expected {
     const char* file;

@@ -130,7 +130,7 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
       o.iterations = fms_iterations;
       // A fixed rho: the estimate (100 trial iterations) returns 0 ("none") when the plain
       // iteration converges to rounding within them, as it does in these soft scenes, and is then
-      // redone at every step (the drape ran 6x slower than plain local-global).
+      // redone at every step, 100 iterations more per step.
       o.chebyshev_rho = 0.5;
       // The contact term (options.contact_weight > 0) slows the iteration's convergence on
       // motion its start does not predict, by 1/2 per iteration (docs/contact.md): start from the
@@ -239,10 +239,9 @@ TEST_CASE("colliders: a particle at rest on a plane with friction stays there (F
 // Skipped: FastMassSpring does not keep a free particle at rest, collider or not. Its velocity is
 // (x' - x) / h, and the global solve x' = Q^-1 (M / h^2 (x + h v) + ...) rounds x' with the same
 // bias every step (the same numbers), so v gains about eps |x| / h (5.5e-14 m/s at |x| = 0.3 m,
-// h = 1 ms) each step and the position drifts quadratically: 2.0e-8 m after 10^4 steps on the
-// frictionless plane here (|x| about 2 m), and a particle at (0.3, 0.25, -0.1) with no collider
-// and no gravity at all drifts 3.6e-9 m. BackwardEuler avoids this
-// by accumulating x' - (x + h v) (its `moved_`). A limit of integrators/local_global, not of the
+// h = 1 ms) each step and the position drifts quadratically, on the frictionless plane here as
+// for a particle with no collider and no gravity at all. BackwardEuler avoids this by
+// accumulating x' - (x + h v) (its `moved_`). A limit of integrators/local_global, not of the
 // colliders; with friction the plane removes the tangential velocity and the particle stays put
 // (the test above).
 TEST_CASE("colliders: a particle at rest on a frictionless plane stays there (FastMassSpring)" *
@@ -523,9 +522,9 @@ void run_drape(Kind kind, double dt, int steps) {
 
 // The explicit integrators at their stable time step (stable_time_step at the start, safety 0.5),
 // 10^4 steps. The implicit ones at dt = 4 ms and fewer steps, to keep each case under a second in
-// Release: 2500 for FastMassSpring (10 iterations a step; 10^4 took 2.5 s), 1000 for BackwardEuler
-// (a factorization per Newton iteration; 2000 took 2.7 s in Newton mode). 4 s and 10 s of
-// simulated time: the cloth has landed on the sphere and the floor (checked) and settled.
+// Release: 2500 for FastMassSpring (10 iterations a step), 1000 for BackwardEuler (a
+// factorization per Newton iteration). 4 s and 10 s of simulated time: the cloth has landed on
+// the sphere and the floor (checked) and settled.
 TEST_CASE("colliders: no point of a drape is ever inside the sphere or the floor (explicit)") {
   const Drape d = make_drape();
   for (const auto& [kind, method] :

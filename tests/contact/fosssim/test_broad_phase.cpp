@@ -131,7 +131,7 @@ TEST_CASE("BroadPhase: grid candidates are exactly the pairs whose boxes overlap
   CHECK(found.size() > 50);
 }
 
-TEST_CASE("BroadPhase: all pairs visits in the course's order and skips incident edges") {
+TEST_CASE("BroadPhase: all pairs visits in FOSSSim's order and skips incident edges") {
   contact::ContactGeometry<double> g = massspring::test::particles(3, 0.1);
   g.edges.resize(1, 2);
   g.edges << 0, 1;

@@ -19,7 +19,7 @@ using massspring::test::v3;
 using massspring::test::V3;
 using Vec = massspring::Vector<double>;
 
-TEST_CASE("rigid_zone_motion: rigid, momentum kept, the course's 2D angle L_z / I_zz") {
+TEST_CASE("rigid_zone_motion: rigid, momentum kept, FOSSSim Theme 2's 2D angle L_z / I_zz") {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
   const int n = 4;
