@@ -3,6 +3,8 @@
 /// @brief The core of massspring: systems, storage, integrators, scene descriptions and generators.
 /// Needs Eigen only. Scene files (JSON, OBJ) are in massspring/io.hpp.
 
+#include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/response/surface_contact.hpp"
 #include "massspring/diagnostics/accuracy.hpp"
 #include "massspring/diagnostics/divergence_guard.hpp"
 #include "massspring/diagnostics/energy.hpp"

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <massspring/contact/response/surface_contact.hpp>  // set_surface()
 #include <massspring/system/mass_spring_system.hpp>
 
 namespace {

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <massspring/contact/colliders/triangle_mesh.hpp>
 #include <massspring/error.hpp>
 #include <massspring/io/fosssim_scene.hpp>
 #include <nlohmann/json.hpp>

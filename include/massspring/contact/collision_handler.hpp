@@ -87,9 +87,9 @@ class CollisionHandlerSlot {
 };
 
 /// @brief Applies the system's collision response to the end-of-step state: its handler, if it
-/// has one, then its colliders (contact/colliders/colliders.hpp), which also take their end-of-step
-/// pose. The one call an integrator makes, after computing (x_end, v_end) from (x_start, v_start)
-/// and before committing them; once the step is committed, the integrator calls
+/// has one, then its colliders (contact/colliders/collider_set.hpp), which also take their
+/// end-of-step pose. The one call an integrator makes, after computing (x_end, v_end) from
+/// (x_start, v_start) and before committing them; once the step is committed, the integrator calls
 /// system.colliders().end_step().
 /// @tparam System a MassSpringSystem (anything with collision_handler(), colliders(), masses(),
 /// pinned())

@@ -7,7 +7,9 @@
 #include <string>
 #include <utility>
 
+#include "massspring/contact/colliders/box_shape.hpp"
 #include "massspring/contact/colliders/collider.hpp"
+#include "massspring/contact/colliders/mesh_shape.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/types.hpp"

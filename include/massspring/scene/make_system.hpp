@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "massspring/contact/response/surface_contact.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/gravity.hpp"

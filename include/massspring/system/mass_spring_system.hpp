@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/colliders/collider_set.hpp"
 #include "massspring/contact/collision_handler.hpp"
-#include "massspring/contact/response/surface_contact.hpp"
+#include "massspring/contact/response/surface_contact_slot.hpp"
 #include "massspring/contact/self_collision.hpp"
 #include "massspring/detail/triangle_edges.hpp"
 #include "massspring/detail/validate.hpp"
@@ -45,6 +45,10 @@ inline std::uint64_t next_revision() {
 /// change of those gives the system a new revision(), and an integrator that sees a new revision
 /// re-factorizes at its next step. Rest lengths, pin targets, positions and velocities may change
 /// between steps at no such cost.
+///
+/// Obstacles of every shape and a surface need headers this one does not include (they are in
+/// massspring/massspring.hpp): Collider::box() contact/colliders/box_shape.hpp, Collider::mesh()
+/// mesh_shape.hpp, set_surface() and surface_contact() contact/response/surface_contact.hpp.
 ///
 /// @tparam Scalar_  float or double
 /// @tparam Storage_ massspring::Dense or massspring::Sparse: the type of the matrices it builds
@@ -309,7 +313,7 @@ class MassSpringSystem {
     return collision_handler_.get() != nullptr || !colliders_.empty() || self_collision_;
   }
 
-  // ---- the surface (contact/response/surface_contact.hpp) ------------------------------------
+  // ---- the surface (needs contact/response/surface_contact.hpp) -----------------------------
 
   /// @brief Sets the cloth's surface: #triangles by 3 point indices (0-based). Its triangles and
   /// their edges are what self-collision and the obstacles' edges test; springs stay the
@@ -318,30 +322,14 @@ class MassSpringSystem {
   /// @throws Error naming the triangle for an index out of range, a point repeated in a
   /// triangle, or a triangle of zero area at the rest positions; nothing is changed then.
   void set_surface(const Triangles& triangles) {
-    const int n = num_points();
-    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-      const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
-      const auto name = [&] {
-        return detail::message("surface triangle ", t, " = (", a, ", ", b, ", ", c, ")");
-      };
-      for (const int p : {a, b, c})
-        if (p < 0 || p >= n)
-          throw Error(detail::message(name(), ": point index ", p, " out of range [0, ", n, ")"));
-      if (a == b || b == c || a == c) throw Error(detail::message(name(), ": repeats a point"));
-      const Vector3Type u = (rest_positions_.row(b) - rest_positions_.row(a)).transpose();
-      const Vector3Type w = (rest_positions_.row(c) - rest_positions_.row(a)).transpose();
-      // Zero area relative to the longest side: collinear corners (or coincident ones).
-      const Scalar longest = std::max({u.squaredNorm(), w.squaredNorm(), (w - u).squaredNorm()});
-      if (!(u.cross(w).norm() > Scalar(64) * std::numeric_limits<Scalar>::epsilon() * longest))
-        throw Error(detail::message(name(), ": zero area at the rest positions"));
-    }
+    detail::require_surface(triangles, rest_positions_);
     std::vector<std::pair<int, int>> edges;
     detail::triangle_edges(triangles, edges);
     surface_edges_.resize(Eigen::Index(edges.size()), 2);
     for (std::size_t e = 0; e < edges.size(); ++e)
       surface_edges_.row(Eigen::Index(e)) << edges[e].first, edges[e].second;
     surface_ = triangles;
-    if (surface_.rows() > 0) surface_contact_.arm();
+    if (surface_.rows() > 0) surface_contact_.get().arm();
   }
   /// @brief The surface's triangles (#triangles by 3, 0-based; empty when none was set).
   [[nodiscard]] const Triangles& surface() const { return surface_; }
@@ -357,9 +345,14 @@ class MassSpringSystem {
       throw Error("self-collision: the system has no surface (set_surface(), or a scene's faces)");
     self_collision_ = parameters;
   }
-  /// @brief The end-of-step surface contact pass (for integrators; see
-  /// integrators/detail/commit_step.hpp).
-  [[nodiscard]] contact::SurfaceContact<Scalar>& surface_contact() { return surface_contact_; }
+  /// @brief The end-of-step surface contact pass (its rounds may be set), made on first use.
+  [[nodiscard]] contact::SurfaceContact<Scalar>& surface_contact() {
+    return surface_contact_.get();
+  }
+  /// @brief The pass as the integrators run it (integrators/detail/commit_step.hpp).
+  [[nodiscard]] contact::SurfaceContactSlot<Scalar>& surface_contact_slot() {
+    return surface_contact_;
+  }
   /// @brief Turns self-collision off (the default).
   void clear_self_collision() { self_collision_.reset(); }
   /// @brief The self-collision parameters, or nothing when it is off.
@@ -488,7 +481,7 @@ class MassSpringSystem {
   Triangles surface_ = Triangles(0, 3);
   Edges surface_edges_ = Edges(0, 2);
   std::optional<contact::SelfCollision<Scalar>> self_collision_;
-  contact::SurfaceContact<Scalar> surface_contact_;
+  contact::SurfaceContactSlot<Scalar> surface_contact_;
   bool damped_ = false;
   PointsType pin_targets_ = PointsType(0, 3);
   PointsType positions_ = PointsType(0, 3);

@@ -13,7 +13,9 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <massspring/contact/colliders/box_shape.hpp>
 #include <massspring/contact/colliders/collider.hpp>
+#include <massspring/contact/colliders/mesh_shape.hpp>
 #include <massspring/contact/colliders/triangle_mesh.hpp>
 #include <massspring/error.hpp>
 #include <random>

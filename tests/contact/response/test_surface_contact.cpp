@@ -322,3 +322,41 @@ TEST_CASE("surface contact: a step it cannot resolve is reported and leaves the 
   }
   CHECK(refused);
 }
+
+TEST_CASE("surface contact: a copy of a system has its own pass and steps as the original does") {
+  // The two cloths of the explicit integrators' test above, self-collision on.
+  massspring::SceneDescription<double> upper =
+      massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.06);
+  for (Eigen::Index i = 0; i < upper.vertices.rows(); ++i) upper.vertices(i, 0) += 0.025;
+  massspring::SceneDescription<double> both = massspring::detail::disjoint_union(
+      massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.02), upper);
+  both.colliders = {massspring::detail::contact_floor()};
+  System s = surface_system(both);
+  s.set_self_collision(SelfCollision<double>{});
+  massspring::SymplecticEuler<System> stepper;
+  stepper.precompute(s, 1.0 / 2000);
+  for (int k = 0; k < 100; ++k) stepper.step(s);
+  System copy = s;  // copy construction
+  System assigned = surface_system(wavy_ribbon());
+  assigned = s;  // copy assignment
+  CHECK(&copy.surface_contact() != &s.surface_contact());
+  CHECK(&assigned.surface_contact() != &s.surface_contact());
+  copy.surface_contact().max_rounds = 1;  // the original's pass keeps its own
+  CHECK(s.surface_contact().max_rounds == 64);
+  copy.surface_contact().max_rounds = 64;
+  int impulses = 0;
+  for (int k = 0; k < 200; ++k) {
+    const StepReport r = stepper.step(s);
+    impulses += r.contact_impulses;
+    CHECK(stepper.step(copy).contact_impulses == r.contact_impulses);
+    CHECK(stepper.step(assigned).contact_impulses == r.contact_impulses);
+  }
+  CHECK(impulses > 0);
+  CHECK(copy.positions() == s.positions());
+  CHECK(copy.velocities() == s.velocities());
+  CHECK(assigned.positions() == s.positions());
+  System moved = std::move(copy);
+  stepper.step(moved);
+  stepper.step(s);
+  CHECK(moved.positions() == s.positions());
+}

@@ -3,7 +3,7 @@
 /// @brief Collider: an obstacle the points of a system cannot enter (a half-space, sphere,
 /// capsule, oriented box or static triangle mesh), its material (Coulomb friction, restitution,
 /// thickness) and its motion (a pose, a linear and an angular velocity). The response that uses
-/// it is in contact/colliders/colliders.hpp; docs/contact.md describes the model.
+/// it is in contact/colliders/collider_set.hpp; docs/contact.md describes the model.
 ///
 /// Frames. Each shape is defined in its own local frame, whose origin is the collider's reference
 /// point: the plane's point, the sphere's, box's and capsule's centre (the capsule's midpoint),
@@ -19,6 +19,11 @@
 /// is a two-sided surface, not a solid: phi is the unsigned distance to the nearest triangle, and
 /// a point whose straight path over the step crosses a triangle is caught (continuous detection)
 /// and put back on the side it came from.
+///
+/// Compile time: a box's and a mesh's geometry (contact/distance/point_box.hpp, the mesh's
+/// hierarchy) are in contact/colliders/box_shape.hpp and mesh_shape.hpp, which box() and mesh()
+/// need; the collider reaches them through a table of pointers those factories set, so a program
+/// that never makes a box or a mesh does not include or compile them.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -28,37 +33,23 @@
 #include <memory>
 #include <utility>
 
+#include "massspring/contact/colliders/collider_contact.hpp"
 #include "massspring/contact/colliders/rotation.hpp"
-#include "massspring/contact/colliders/triangle_mesh.hpp"
-#include "massspring/contact/distance/point_box.hpp"
 #include "massspring/contact/distance/point_segment.hpp"
+#include "massspring/detail/is_complete.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
 
-/// @brief The kind of a collider's shape.
-enum class ColliderShape { Plane, Sphere, Capsule, Box, Mesh };
-
-/// @brief A collider's name in messages and scenes: "plane", "sphere", "capsule", "box", "mesh".
-inline const char* to_string(ColliderShape shape) {
-  static constexpr const char* names[] = {"plane", "sphere", "capsule", "box", "mesh"};
-  const int i = static_cast<int>(shape);
-  return i >= 0 && i < 5 ? names[i] : "?";
-}
-
-/// @brief A point's contact with one collider, in world coordinates.
 template <class Scalar>
-struct ColliderContact {
-  /// @brief thickness - phi(x) [m]: how far the point must move along `normal` to leave the
-  /// contact zone (> 0 inside it, <= 0 when it only touches within the tolerance).
-  Scalar depth = 0;
-  /// @brief Unit outward normal of the surface at the contact.
-  Vector3<Scalar> normal = Vector3<Scalar>::UnitZ();
-  /// @brief Velocity of the collider's surface at the point [m/s].
-  Vector3<Scalar> velocity = Vector3<Scalar>::Zero();
-};
+class TriangleMesh;
+// Defined in box_shape.hpp and mesh_shape.hpp, which Collider::box() and Collider::mesh() need.
+template <class Scalar>
+struct BoxShape;
+template <class Scalar>
+struct MeshShape;
 
 /// @brief An obstacle: shape, material and motion. Build one with the static functions plane(),
 /// sphere(), capsule(), box() and mesh(); set its material and motion with the setters, which
@@ -102,37 +93,24 @@ class Collider {
     return c;
   }
   /// @brief A solid box with the given centre [m], half extents (each > 0) [m] along its axes,
-  /// and orientation: the unit quaternion (w, x, y, z) (normalised here; not zero).
+  /// and orientation: the unit quaternion (w, x, y, z) (normalised here; not zero). Defined in
+  /// contact/colliders/box_shape.hpp.
+  template <class S = Scalar>
   static Collider box(const V3& center, const V3& half_extents,
                       const Eigen::Matrix<Scalar, 4, 1>& wxyz = Eigen::Matrix<Scalar, 4, 1>(1, 0, 0,
                                                                                             0)) {
-    check_finite(center, "box: center");
-    check_finite(half_extents, "box: half_extents");
-    for (int k = 0; k < 3; ++k) check_positive(half_extents(k), "box collider: half_extents");
-    if (!wxyz.allFinite() || !(wxyz.norm() > 0))
-      throw Error("box collider: rotation must be a finite, non-zero quaternion (w, x, y, z)");
-    Collider c(ColliderShape::Box, center);
-    c.axis_ = half_extents;
-    c.rotation_ = quaternion_matrix<Scalar>(wxyz / wxyz.norm());
-    c.end_rotation_ = c.rotation_;
-    c.previous_rotation_ = c.rotation_;
-    c.refresh();
-    return c;
+    static_assert(massspring::detail::is_complete_v<BoxShape<S>>,
+                  "Collider::box() needs #include <massspring/contact/colliders/box_shape.hpp>");
+    return BoxShape<S>::make(center, half_extents, wxyz);
   }
   /// @brief A static triangle mesh (vertices [m], triangles as 0-based indices), two-sided.
-  /// Throws Error for a degenerate mesh (see TriangleMesh).
+  /// Throws Error for a degenerate mesh (see TriangleMesh). Defined in
+  /// contact/colliders/mesh_shape.hpp.
+  template <class S = Scalar>
   static Collider mesh(Points<Scalar> vertices, Triangles triangles) {
-    if (vertices.rows() > 0 && vertices.allFinite()) {
-      const V3 center =
-          (vertices.colwise().minCoeff() + vertices.colwise().maxCoeff()).transpose() / 2;
-      vertices.rowwise() -= center.transpose();
-      Collider c(ColliderShape::Mesh, center);
-      c.mesh_ =
-          std::make_shared<const TriangleMesh<Scalar>>(std::move(vertices), std::move(triangles));
-      return c;
-    }
-    throw Error(vertices.rows() == 0 ? "mesh collider: no vertices"
-                                     : "mesh collider: a vertex is not finite");
+    static_assert(massspring::detail::is_complete_v<MeshShape<S>>,
+                  "Collider::mesh() needs #include <massspring/contact/colliders/mesh_shape.hpp>");
+    return MeshShape<S>::make(std::move(vertices), std::move(triangles));
   }
 
   [[nodiscard]] ColliderShape shape() const { return shape_; }
@@ -308,13 +286,13 @@ class Collider {
       case ColliderShape::Box: {
         const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
         V3 n_local;
-        phi = point_box_distance<Scalar>(p, axis_, n_local);
+        phi = geometry_->phi(*this, p, n_local);
         c.normal = end_rotation_ * n_local;
         break;
       }
       case ColliderShape::Mesh:
-        return mesh_contact(x_start, end_rotation_.transpose() * (x_end - end_translation_), slop,
-                            c);
+        return geometry_->contact(*this, x_start,
+                                  end_rotation_.transpose() * (x_end - end_translation_), slop, c);
     }
     if (!(phi < thickness_ + slop)) {
       if (shape_ == ColliderShape::Plane || !crossed(x_start, x_end, phi, slop, c)) return false;
@@ -333,6 +311,18 @@ class Collider {
   }
 
  private:
+  friend struct BoxShape<Scalar>;
+  friend struct MeshShape<Scalar>;
+  // A box's or a mesh's geometry (box_shape.hpp, mesh_shape.hpp): phi and the outward normal at
+  // a local point (box), the contact of a path (mesh, as contact() with x_end in the end frame),
+  // the radius of a ball about the reference point that holds the shape.
+  struct Geometry {
+    Scalar (*phi)(const Collider&, const V3& p, V3& n);
+    bool (*contact)(const Collider&, const V3& x_start, const V3& b, Scalar slop,
+                    ColliderContact<Scalar>& c);
+    Scalar (*bound)(const Collider&);
+  };
+
   Collider(ColliderShape shape, const V3& reference) : shape_(shape), translation_(reference) {
     end_translation_ = reference;
     previous_translation_ = reference;
@@ -369,7 +359,7 @@ class Collider {
         inner_ = axis_.minCoeff();
         break;
       case ColliderShape::Mesh:
-        bound_ = std::max(mesh_->lower().norm(), mesh_->upper().norm());
+        bound_ = geometry_->bound(*this);
         break;
     }
     const Scalar margin = std::sqrt(std::numeric_limits<Scalar>::epsilon()) *
@@ -409,7 +399,7 @@ class Collider {
         return d.distance - radius_;
       }
       case ColliderShape::Box:
-        return point_box_distance<Scalar>(p, axis_, n);
+        return geometry_->phi(*this, p, n);
       case ColliderShape::Mesh:
         break;
     }
@@ -484,43 +474,11 @@ class Collider {
     return velocity_ + angular_velocity_.cross(x - end_translation_);
   }
 
-  // Mesh: continuous detection of the local path a -> b, then the closest point within the
-  // thickness. `b` is x_end in the end frame.
-  bool mesh_contact(const V3& x_start, const V3& b, Scalar slop, ColliderContact<Scalar>& c) const {
-    const V3 a = rotation_.transpose() * (x_start - translation_);
-    const TriangleMesh<Scalar>& mesh = *mesh_;
-    Scalar t = 0;
-    int tri = -1;
-    if (mesh.first_crossing(a, b, t, tri)) {
-      const V3 n = mesh.normal(tri), v0 = mesh.vertex(tri, 0);
-      const Scalar side_a = (a - v0).dot(n), side_b = (b - v0).dot(n);
-      // The side the point came from (a on the plane: the side opposite its motion).
-      const V3 ns = (side_a > 0 || (side_a == 0 && side_b < 0)) ? n : V3(-n);
-      // Back to that side, at the thickness and at least a few rounding units away, so that the
-      // next step knows the side.
-      const Scalar offset =
-          thickness_ + 64 * std::numeric_limits<Scalar>::epsilon() * (1 + b.cwiseAbs().maxCoeff());
-      c.depth = offset - (b - v0).dot(ns);
-      c.normal = end_rotation_ * ns;
-      c.velocity = surface_velocity(end_rotation_ * b + end_translation_);
-      return true;
-    }
-    if (!(thickness_ + slop > 0)) return false;
-    V3 q;
-    if (!mesh.closest_within(b, thickness_ + slop, q, tri)) return false;
-    const Scalar d = (b - q).norm();
-    V3 n = d > 0 ? V3((b - q) / d) : mesh.normal(tri);
-    if (d == 0 && (a - q).dot(n) < 0) n = -n;
-    c.depth = thickness_ - d;
-    c.normal = end_rotation_ * n;
-    c.velocity = surface_velocity(end_rotation_ * b + end_translation_);
-    return true;
-  }
-
   ColliderShape shape_;
   V3 axis_ = V3::Zero();
   Scalar radius_ = 0;
   std::shared_ptr<const TriangleMesh<Scalar>> mesh_;
+  const Geometry* geometry_ = nullptr;  // a box's or a mesh's (set by box() or mesh())
   Scalar mu_static_ = 0, mu_kinetic_ = 0, restitution_ = 0, thickness_ = 0;
   M3 rotation_ = M3::Identity();
   V3 translation_;

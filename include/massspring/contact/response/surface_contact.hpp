@@ -9,7 +9,7 @@
 /// point), a capsule's axis (an edge and its two ends), a box's corners and twelve edges, a
 /// mesh's vertices, edges and triangles,
 /// each carried by its collider from the pose at the start of the step to the one at its end.
-/// Solid interiors stay the colliders' point response (contact/colliders/colliders.hpp), which
+/// Solid interiors stay the colliders' point response (contact/colliders/collider_set.hpp), which
 /// runs first.
 ///
 /// Pairs: a point and a triangle it is not a corner of, two edges that share no point. Between
@@ -62,24 +62,12 @@
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/contact/response/impact_zones.hpp"
 #include "massspring/contact/response/surface_candidates.hpp"
+#include "massspring/contact/response/surface_contact_slot.hpp"
 #include "massspring/contact/response/surface_elements.hpp"
 #include "massspring/contact/self_collision.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
-
-/// @brief What one SurfaceContact pass did.
-struct SurfaceContactReport {
-  /// @brief Repulsion and collision impulses applied.
-  int impulses = 0;
-  /// @brief Rounds of continuous detection (1 when the proposed motion had no collision).
-  int rounds = 0;
-  /// @brief Points moved rigidly in impact zones.
-  int zone_points = 0;
-  /// @brief False only when the fail-safe ran out of rounds with collisions left (the state is
-  /// then the last one tried; see max_rounds).
-  bool resolved = true;
-};
 
 /// @brief The end-of-step pass of surface contact (see the file comment). Armed by the system's
 /// set_surface(); until then resolve() does nothing and its code is not instantiated.

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "massspring/contact/collision_handler.hpp"
-#include "massspring/contact/response/surface_contact.hpp"
+#include "massspring/contact/response/surface_contact_slot.hpp"
 #include "massspring/integrators/step_report.hpp"
 
 namespace massspring::detail {
@@ -44,7 +44,7 @@ void commit_step(System& system, typename System::PointsType& x_end,
   if (system.has_collision_response()) {
     contact::handle_collisions(system, x0, system.velocities(), x_end, v_end, dt,
                                collider_friction);
-    const contact::SurfaceContactReport r = system.surface_contact().resolve(
+    const contact::SurfaceContactReport r = system.surface_contact_slot().resolve(
         x0, x_end, v_end, dt, system.masses(), pinned, system.surface(), system.surface_edges(),
         system.self_collision(), system.colliders());
     report.contact_impulses = r.impulses;

@@ -29,7 +29,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/colliders/collider_set.hpp"
 #include "massspring/integrators/local_global/reduced_system.hpp"
 #include "massspring/types.hpp"
 

@@ -60,7 +60,7 @@ namespace massspring {
 /// is not finite is reported in the StepReport, the system keeping its state. A zero-length
 /// spring keeps the direction it had at the end of the previous step.
 ///
-/// Colliders (MassSpringSystem::add_collider, contact/colliders/colliders.hpp) act inside the
+/// Colliders (MassSpringSystem::add_collider, contact/colliders/collider_set.hpp) act inside the
 /// iteration: each local step first projects the iterate out of them (with friction), so the
 /// springs see where contact leaves the points; the end-of-step state then gets the same response
 /// as in every other integrator (position, then velocity: restitution and friction). A collision

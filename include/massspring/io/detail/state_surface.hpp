@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "massspring/contact/response/surface_contact.hpp"
 #include "massspring/contact/self_collision.hpp"
 #include "massspring/error.hpp"
 #include "massspring/io/detail/json_text.hpp"
