@@ -169,17 +169,24 @@ TEST_CASE(
   check_ribbon_backward_euler(massspring::BackwardEulerMode::Linearized);
 }
 
-TEST_CASE_TEMPLATE(
-    "surface contact: explicit integrators at their stable step, a cloth dropped onto another",
-    Stepper, massspring::SymplecticEuler<System>, massspring::RK4<System>) {
-  // Two 9 x 9 cloths of 0.4 m (5 cm spacing): one 2 cm above the floor, one 4 cm above that,
-  // shifted by half a cell. Stable step of the 1000 N/m springs on 2 g points: about 1.4 ms.
+namespace {
+// Two 9 x 9 cloths of 0.4 m (5 cm spacing) over the floor: one 2 cm above it, one 4 cm above
+// that, shifted by half a cell. Stable step of the 1000 N/m springs on 2 g points: about 1.4 ms.
+massspring::SceneDescription<double> stacked_cloths() {
   massspring::SceneDescription<double> upper =
       massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.06);
   for (Eigen::Index i = 0; i < upper.vertices.rows(); ++i) upper.vertices(i, 0) += 0.025;
   massspring::SceneDescription<double> both = massspring::detail::disjoint_union(
       massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.02), upper);
   both.colliders = {massspring::detail::contact_floor()};
+  return both;
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE(
+    "surface contact: explicit integrators at their stable step, a cloth dropped onto another",
+    Stepper, massspring::SymplecticEuler<System>, massspring::RK4<System>) {
+  const massspring::SceneDescription<double> both = stacked_cloths();
   for (const bool self : {false, true}) {
     CAPTURE(self);
     System s = surface_system(both);
@@ -324,13 +331,7 @@ TEST_CASE("surface contact: a step it cannot resolve is reported and leaves the 
 }
 
 TEST_CASE("surface contact: a copy of a system has its own pass and steps as the original does") {
-  // The two cloths of the explicit integrators' test above, self-collision on.
-  massspring::SceneDescription<double> upper =
-      massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.06);
-  for (Eigen::Index i = 0; i < upper.vertices.rows(); ++i) upper.vertices(i, 0) += 0.025;
-  massspring::SceneDescription<double> both = massspring::detail::disjoint_union(
-      massspring::detail::contact_cloth(9, 9, 0.4, 0.4, 0.02), upper);
-  both.colliders = {massspring::detail::contact_floor()};
+  const massspring::SceneDescription<double> both = stacked_cloths();  // self-collision on below
   System s = surface_system(both);
   s.set_self_collision(SelfCollision<double>{});
   massspring::SymplecticEuler<System> stepper;
