@@ -1,7 +1,8 @@
 // contact/response/surface_candidates.hpp against a brute-force list: every point-triangle and
-// edge-edge pair whose grown swept boxes overlap (and that shares no point) is listed once, by
-// full() exactly and by refresh() after rounds that move some end positions by small steps,
-// by large ones (escaping the stored boxes) and by very many (falling back to full()).
+// edge-edge pair whose grown swept boxes overlap (and that shares no point) is listed once: by
+// full() exactly the pairs of the boxes grown by the margin too, and by refresh() and
+// next_step() after rounds and steps that move end positions by small steps, by large ones
+// (escaping the stored boxes) and by very many (falling back to full()).
 #include <doctest/doctest.h>
 
 #include <Eigen/Core>
@@ -34,21 +35,21 @@ Box swept(const massspring::Points<double>& x0, const massspring::Points<double>
 
 // Every pair SurfaceElements::pair_gap() tests (cloth-cloth only with self-collision; never
 // obstacle-obstacle) whose boxes overlap, each element's box grown as SurfaceElements::grow_of()
-// says (the cloth's by g, an obstacle's by its gap), sharing no point.
-PairSet brute_force(const contact::SurfaceElements<double>& e, double g) {
+// says (the cloth's by g, an obstacle's by its gap) and by `extra`, sharing no point.
+PairSet brute_force(const contact::SurfaceElements<double>& e, double g, double extra = 0) {
   PairSet out;
   const auto& x0 = e.x0;
   const auto& x1 = e.x1;
   for (std::size_t v = 0; v < e.points.size(); ++v) {
     const auto& pv = e.points[v];
     const int i = pv.p[0];
-    const Box bp = swept(x0, x1, {i}, e.grow_of(pv, g));
+    const Box bp = swept(x0, x1, {i}, e.grow_of(pv, g) + extra);
     for (std::size_t t = 0; t < e.triangles.size(); ++t) {
       const auto& tt = e.triangles[t];
       const auto& c = tt.p;
       if (e.pair_gap(pv.owner, tt.owner) < 0) continue;
       if (i == c[0] || i == c[1] || i == c[2]) continue;
-      if (bp.overlaps(swept(x0, x1, {c[0], c[1], c[2]}, e.grow_of(tt, g))))
+      if (bp.overlaps(swept(x0, x1, {c[0], c[1], c[2]}, e.grow_of(tt, g) + extra)))
         out.insert({0, int(v), int(t)});
     }
   }
@@ -58,8 +59,8 @@ PairSet brute_force(const contact::SurfaceElements<double>& e, double g) {
       const auto& q = e.edges[b].p;
       if (e.pair_gap(e.edges[a].owner, e.edges[b].owner) < 0) continue;
       if (p[0] == q[0] || p[0] == q[1] || p[1] == q[0] || p[1] == q[1]) continue;
-      if (swept(x0, x1, {p[0], p[1]}, e.grow_of(e.edges[a], g))
-              .overlaps(swept(x0, x1, {q[0], q[1]}, e.grow_of(e.edges[b], g))))
+      if (swept(x0, x1, {p[0], p[1]}, e.grow_of(e.edges[a], g) + extra)
+              .overlaps(swept(x0, x1, {q[0], q[1]}, e.grow_of(e.edges[b], g) + extra)))
         out.insert({1, int(a), int(b)});
     }
   return out;
@@ -126,7 +127,7 @@ TEST_CASE("SurfaceCandidates: full() and refresh() list every overlapping pair o
   const double grow = 0.002, margin = 0.002;
   contact::SurfaceCandidates<double> broad;
   broad.full(e, grow, margin);
-  CHECK(listed(broad.pairs()) == brute_force(e, grow));
+  CHECK(listed(broad.pairs()) == brute_force(e, grow, margin));
   REQUIRE(broad.full_count() == 1);
 
   std::vector<char> moved(std::size_t(e.x1.rows()), 0);
@@ -140,7 +141,7 @@ TEST_CASE("SurfaceCandidates: full() and refresh() list every overlapping pair o
       moved[std::size_t(i)] = 1;
     }
     broad.refresh(e, moved);
-    // A superset of the pairs of the true boxes (refresh() may keep some farther apart).
+    // A superset of the pairs of the true boxes (the stored boxes list some farther apart).
     const PairSet got = listed(broad.pairs());
     const PairSet want = brute_force(e, grow);
     CHECK(std::includes(got.begin(), got.end(), want.begin(), want.end()));
@@ -195,7 +196,7 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
   broad.full(e, grow, margin);
   const PairSet want = brute_force(e, grow);
   REQUIRE(want.size() > 20);  // the obstacles meet the cloth
-  CHECK(listed(broad.pairs()) == want);
+  CHECK(listed(broad.pairs()) == brute_force(e, grow, margin));
 
   // Rounds that move some cloth points, small and large: still every pair.
   std::vector<char> moved(std::size_t(e.x1.rows()), 0);
@@ -212,5 +213,67 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
     const PairSet got = listed(broad.pairs());
     const PairSet now = brute_force(e, grow);
     CHECK(std::includes(got.begin(), got.end(), now.begin(), now.end()));
+  }
+}
+
+// Steps after steps of the same elements: next_step() keeps the pairs of the elements that stay
+// in their stored boxes and lists the escaped ones again, so each step's list holds every pair
+// of its true boxes; other elements (self-collision switched off) make it start over.
+TEST_CASE("SurfaceCandidates: next_step() over steps keeps every overlapping pair") {
+  std::mt19937 rng(7);
+  Crumpled c = crumpled(rng);
+  massspring::Edges edges;
+  {
+    std::vector<std::pair<int, int>> list;
+    massspring::detail::triangle_edges(c.triangles, list);
+    edges.resize(Eigen::Index(list.size()), 2);
+    for (std::size_t k = 0; k < list.size(); ++k)
+      edges.row(Eigen::Index(k)) << list[k].first, list[k].second;
+  }
+  const std::vector<int> pinned;
+  std::optional<contact::SelfCollision<double>> self = contact::SelfCollision<double>{};
+  contact::ColliderSet<double> colliders;
+  colliders.add(contact::Collider<double>::capsule(Eigen::Vector3d(-0.02, -0.05, 0),
+                                                   Eigen::Vector3d(0.12, -0.03, 0.002), 0.004));
+  const double grow = 0.002, margin = 0.002;
+  contact::SurfaceElements<double> e;
+  contact::SurfaceCandidates<double> broad;
+  // One step: the last end positions start it, and every point moves by up to `step` [m].
+  const auto step = [&](double by_most) {
+    const contact::SurfaceContactInput<double> in{c.x0,   c.x1,        c.v,   1.0 / 30, c.masses,
+                                                  pinned, c.triangles, edges, self,     colliders};
+    e.setup(in);
+    broad.next_step(e, grow, margin);
+    const PairSet got = listed(broad.pairs());
+    const PairSet want = brute_force(e, grow);
+    REQUIRE(!want.empty());
+    CHECK(std::includes(got.begin(), got.end(), want.begin(), want.end()));
+    c.x0 = c.x1;
+    std::uniform_real_distribution<double> by(-by_most, by_most);
+    for (Eigen::Index i = 0; i < c.x1.rows(); ++i)
+      for (int a = 0; a < 3; ++a) c.x1(i, a) += by(rng);
+  };
+  step(margin / 8);  // the first: full()
+  REQUIRE(broad.full_count() == 1);
+  SUBCASE("a cloth that barely moves keeps its list") {
+    for (int k = 0; k < 3; ++k) step(margin / 8);
+    CHECK(broad.full_count() == 1);
+  }
+  SUBCASE("a few points jump: they are listed again, still every pair") {
+    for (int k = 0; k < 4; ++k) {
+      step(margin / 8);
+      for (int i : {3, 40, 77}) c.x1(i, 1) += 0.03;
+    }
+    CHECK(broad.full_count() == 1);
+  }
+  SUBCASE("every point jumps: full() again") {
+    step(0.03);
+    step(0.03);
+    CHECK(broad.full_count() == 2);
+  }
+  SUBCASE("self-collision switched off: other pairs, full() again") {
+    self.reset();
+    step(margin / 8);
+    CHECK(broad.full_count() == 2);
   }
 }

@@ -11,21 +11,23 @@
 /// point, and pairs SurfaceElements::pair_gap() excludes (obstacle with obstacle; cloth with
 /// cloth without self-collision) are left out.
 ///
-/// full() hashes every element (contact/broad_phase/box_hash.hpp) with its box grown by a further
-/// margin m, and lists the pairs of the true boxes; without self-collision only the obstacles'
-/// elements are queried, as every pair then has one. refresh() then updates the list after a round
-/// moved the points flagged in `moved`: the pairs that have no moved point keep their boxes and
-/// stay; the elements that have a moved point are queried again with their new boxes against the
-/// stored ones. While a moved element's box stays inside its stored box (grown by m), the stored
-/// box covers the current one and the hash finds its overlaps. An element whose box leaves its
-/// stored one has escaped: from then on its stored box is its current box grown by m, and it is
-/// compared with every query box directly rather than through the hash (the hash still has it in
-/// the cells of its old box). More than max(64, 1/16 of the elements of its kind) escaped:
-/// refresh() calls full() instead. Either way the list afterwards holds every candidate of the
-/// current motion (and, from refresh(), some pairs whose boxes overlap only through the slack of
-/// the stored ones).
-/// Cost: full() O(elements x cells per box); refresh() O(pairs) to filter, plus the queries of
-/// the moved elements, each O(cells per box + escaped elements).
+/// Each element keeps a stored box that holds its current one: at first its current box grown by
+/// a further margin m. The list holds every pair whose stored boxes overlap, a superset of the
+/// candidates that stays one while every current box stays inside its stored box. full() stores
+/// every element's box, hashes them (contact/broad_phase/box_hash.hpp) and lists the pairs;
+/// without self-collision only the obstacles' elements are queried, as every pair then has one.
+/// refresh() follows a round that moved the end positions of the points flagged in `moved`, and
+/// next_step() a new step of the same elements (every point moved): an element whose current box
+/// has left its stored box has escaped; its stored box becomes its current box grown by m, its
+/// pairs are dropped and listed again from that box, against the hash for the elements in place
+/// and a small second hash of the escaped ones (the first still has them in the cells of their old
+/// boxes). Elements that stay inside keep their pairs untouched, so a cloth that rests or moves
+/// less than m per step costs O(elements) a step, not a hash query per element. More than a
+/// quarter of the elements of a kind escaped since the last full() (then a new hash costs less
+/// than the queries), or other elements than the last step's (a new surface, collider or
+/// self-collision switch): full() instead.
+/// Cost: full() O(elements x cells per box); refresh() and next_step() O(elements + pairs), plus
+/// one query per escaped element.
 ///
 /// Work arrays keep their capacity: after the first steps nothing allocates.
 
@@ -50,11 +52,15 @@ class SurfaceCandidates {
   [[nodiscard]] const std::vector<ElementPair>& pairs() const { return pairs_; }
 
   /// @brief Lists every candidate of e's motion with the cloth's boxes grown by `grow` [m]
-  /// (>= 0), storing boxes grown by a further `margin` [m] (>= 0) for refresh().
+  /// (>= 0), storing boxes grown by a further `margin` [m] (>= 0) for refresh() and next_step().
   void full(const Elements& e, Scalar grow, Scalar margin) {
     grow_ = grow;
     margin_ = margin;
     ++full_count_;
+    points_seen_ = e.points;  // same sizes after the first steps: no allocation
+    edges_seen_ = e.edges;
+    triangles_seen_ = e.triangles;
+    self_seen_ = e.self;
     points_.store(e, e.points, 1, grow, margin);
     triangles_.store(e, e.triangles, 3, grow, margin);
     edges_.store(e, e.edges, 2, grow, margin);
@@ -73,27 +79,36 @@ class SurfaceCandidates {
     }
     triangles_.hash_boxes(cell_);
     edges_.hash_boxes(cell_);
-    // The true boxes are the stored ones shrunk by the margin.
-    for (std::size_t v = 0; v < e.points.size(); ++v) {
-      const Box& box = points_.stored[v];
-      triangles_.hash.query(box, [&](int t) {
-        if (overlap_shrunk(box, triangles_.stored[std::size_t(t)]))
-          add_point_triangle(e, int(v), t);
-      });
-    }
-    for (std::size_t a = 0; a < e.edges.size(); ++a) {
-      const Box& box = edges_.stored[a];
+    for (std::size_t v = 0; v < e.points.size(); ++v)
+      triangles_.hash.query(points_.stored[v], [&](int t) { add_point_triangle(e, int(v), t); });
+    for (std::size_t a = 0; a < e.edges.size(); ++a)
       edges_.hash.query(
-          box,
-          [&](int b) {
-            if (overlap_shrunk(box, edges_.stored[std::size_t(b)])) add_edge_edge(e, int(a), b);
-          },
-          int(a));
+          edges_.stored[a], [&](int b) { add_edge_edge(e, int(a), b); }, int(a));
+  }
+
+  /// @brief Brings the list to the next step's motion of the same elements (see the file
+  /// comment): full() when e's elements or self-collision switch differ from the last full()'s,
+  /// or `grow` or `margin` from its values.
+  void next_step(const Elements& e, Scalar grow, Scalar margin) {
+    const auto same = [](const std::vector<Element>& a, const std::vector<Element>& b) {
+      return a.size() == b.size() &&
+             std::equal(a.begin(), a.end(), b.begin(), [](const Element& x, const Element& y) {
+               return x.p == y.p && x.owner == y.owner;
+             });
+    };
+    if (full_count_ == 0 || grow != grow_ || margin != margin_ || e.self != self_seen_ ||
+        !same(e.points, points_seen_) || !same(e.edges, edges_seen_) ||
+        !same(e.triangles, triangles_seen_)) {
+      full(e, grow, margin);
+      return;
     }
+    all_moved_.assign(std::size_t(e.x1.rows()), 1);
+    refresh(e, all_moved_);
   }
 
   /// @brief Brings the list up to date after the end positions of the points with moved[i] != 0
-  /// changed (see the file comment); needs a full() on the same elements since their setup.
+  /// changed (see the file comment); needs a full() or next_step() on the same elements since
+  /// their setup.
   void refresh(const Elements& e, const std::vector<char>& moved) {
     if (!points_.update(e, e.points, 1, moved, grow_, margin_) ||
         !triangles_.update(e, e.triangles, 3, moved, grow_, margin_) ||
@@ -101,7 +116,7 @@ class SurfaceCandidates {
       full(e, grow_, margin_);
       return;
     }
-    // Keep the pairs of unmoved elements; query the moved ones again.
+    // Keep the pairs of the elements in place; query the escaped ones again.
     const auto stale = [&](const ElementPair& q) {
       return q.kind == 0 ? points_.moved[std::size_t(q.a)] || triangles_.moved[std::size_t(q.b)]
                          : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
@@ -109,15 +124,15 @@ class SurfaceCandidates {
     pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), stale), pairs_.end());
     if (!points_.moved_ids.empty()) triangles_.hash_boxes(cell_);
     for (int v : points_.moved_ids)
-      triangles_.query(points_.now[std::size_t(v)], [&](int t) { add_point_triangle(e, v, t); });
+      triangles_.query(points_.stored[std::size_t(v)], [&](int t) { add_point_triangle(e, v, t); });
     if (!triangles_.moved_ids.empty()) points_.hash_boxes(cell_);
     for (int t : triangles_.moved_ids)
-      points_.query(triangles_.now[std::size_t(t)], [&](int v) {
+      points_.query(triangles_.stored[std::size_t(t)], [&](int v) {
         if (!points_.moved[std::size_t(v)]) add_point_triangle(e, v, t);
       });
     if (!edges_.moved_ids.empty()) edges_.hash_boxes(cell_);
     for (int a : edges_.moved_ids)
-      edges_.query(edges_.now[std::size_t(a)], [&](int b) {
+      edges_.query(edges_.stored[std::size_t(a)], [&](int b) {
         if (!edges_.moved[std::size_t(b)] || b > a) add_edge_edge(e, a, b);
       });
   }
@@ -129,16 +144,19 @@ class SurfaceCandidates {
   // The boxes and hash of one kind of element (points, edges or triangles).
   struct Layer {
     std::vector<Box> stored;  // grown by grow_of() + margin; hashed unless escaped
-    std::vector<Box> now;     // the moved elements' current boxes, grown by grow_of()
-    std::vector<char> moved, escaped;
+    std::vector<char> moved, escaped;  // moved: escaped in the last update(), pairs to list
     std::vector<int> moved_ids, escaped_ids;
-    BoxHash<Scalar> hash;
-    bool hashed = false;  // hash holds `stored` as full() left it
+    std::vector<Box> escaped_boxes;  // stored[escaped_ids[j]], hashed in escaped_hash
+    BoxHash<Scalar> hash, escaped_hash;
+    Scalar cell = 1;
+    bool hashed = false;          // hash holds `stored` as full() left it
+    bool escaped_hashed = false;  // escaped_hash holds escaped_boxes as they are
 
     // Hashes the stored boxes, unless done since the last full().
-    void hash_boxes(Scalar cell) {
+    void hash_boxes(Scalar cell_size) {
+      cell = cell_size;
       if (hashed) return;
-      hash.build(stored, cell);
+      hash.build(stored, cell_size);
       hashed = true;
     }
 
@@ -147,12 +165,12 @@ class SurfaceCandidates {
       stored.resize(elements.size());
       for (std::size_t i = 0; i < elements.size(); ++i)
         stored[i] = e.swept(elements[i], count, e.grow_of(elements[i], grow) + margin);
-      now.resize(elements.size());
       escaped.assign(elements.size(), 0);
       escaped_ids.clear();
+      escaped_hashed = false;
     }
-    // Flags the elements with a moved point and takes their current boxes; false when too many
-    // have escaped their stored boxes.
+    // Flags the elements with a moved point whose current box left the stored one, and stores
+    // the current box grown by the margin; false when too many have escaped their stored boxes.
     bool update(const Elements& e, const std::vector<Element>& elements, int count,
                 const std::vector<char>& moved_points, Scalar grow, Scalar margin) {
       moved.assign(elements.size(), 0);
@@ -162,16 +180,16 @@ class SurfaceCandidates {
         for (int k = 0; k < count; ++k)
           any = any || moved_points[std::size_t(elements[i].p[std::size_t(k)])];
         if (!any) continue;
+        const Box now = e.swept(elements[i], count, e.grow_of(elements[i], grow));
+        if (inside(now, stored[i])) continue;
         moved[i] = 1;
         moved_ids.push_back(int(i));
-        now[i] = e.swept(elements[i], count, e.grow_of(elements[i], grow));
-        if (escaped[i] || !inside(now[i], stored[i])) {
-          if (!escaped[i]) escaped_ids.push_back(int(i));
-          escaped[i] = 1;
-          stored[i] = {now[i].lo.array() - margin, now[i].hi.array() + margin};
-        }
+        if (!escaped[i]) escaped_ids.push_back(int(i));
+        escaped[i] = 1;
+        escaped_hashed = false;
+        stored[i] = {now.lo.array() - margin, now.hi.array() + margin};
       }
-      return escaped_ids.size() <= std::max<std::size_t>(64, elements.size() / 16);
+      return escaped_ids.size() <= std::max<std::size_t>(64, elements.size() / 4);
     }
     // Calls visit(i) for each element i whose stored box overlaps q: through the hash for the
     // elements in place, directly for the escaped ones.
@@ -180,8 +198,15 @@ class SurfaceCandidates {
       hash.query(q, [&](int i) {
         if (!escaped[std::size_t(i)]) visit(i);
       });
-      for (int i : escaped_ids)
-        if (stored[std::size_t(i)].overlaps(q)) visit(i);
+      if (escaped_ids.empty()) return;
+      if (!escaped_hashed) {
+        escaped_boxes.resize(escaped_ids.size());
+        for (std::size_t j = 0; j < escaped_ids.size(); ++j)
+          escaped_boxes[j] = stored[std::size_t(escaped_ids[j])];
+        escaped_hash.build(escaped_boxes, cell);
+        escaped_hashed = true;
+      }
+      escaped_hash.query(q, [&](int j) { visit(escaped_ids[std::size_t(j)]); });
     }
   };
 
@@ -193,10 +218,7 @@ class SurfaceCandidates {
       if (e.points[v].owner < 0) continue;
       triangles_.hash_boxes(cell_);
       const Box& box = points_.stored[v];
-      triangles_.hash.query(box, [&](int t) {
-        if (overlap_shrunk(box, triangles_.stored[std::size_t(t)]))
-          add_point_triangle(e, int(v), t);
-      });
+      triangles_.hash.query(box, [&](int t) { add_point_triangle(e, int(v), t); });
     }
     bool obstacle_triangles = false;
     for (const Element& t : e.triangles) obstacle_triangles = obstacle_triangles || t.owner >= 0;
@@ -206,9 +228,7 @@ class SurfaceCandidates {
         if (e.triangles[t].owner < 0) continue;
         const Box& box = triangles_.stored[t];
         points_.hash.query(box, [&](int v) {
-          if (e.points[std::size_t(v)].owner < 0 &&
-              overlap_shrunk(points_.stored[std::size_t(v)], box))
-            add_point_triangle(e, v, int(t));
+          if (e.points[std::size_t(v)].owner < 0) add_point_triangle(e, v, int(t));
         });
       }
     }
@@ -217,19 +237,13 @@ class SurfaceCandidates {
       edges_.hash_boxes(cell_);
       const Box& box = edges_.stored[a];
       edges_.hash.query(box, [&](int b) {
-        if (e.edges[std::size_t(b)].owner < 0 && overlap_shrunk(box, edges_.stored[std::size_t(b)]))
-          add_edge_edge(e, int(a), b);
+        if (e.edges[std::size_t(b)].owner < 0) add_edge_edge(e, int(a), b);
       });
     }
   }
 
   static bool inside(const Box& b, const Box& outer) {
     return (outer.lo.array() <= b.lo.array()).all() && (b.hi.array() <= outer.hi.array()).all();
-  }
-  // Whether a and b, both grown by the margin, overlap once shrunk by it.
-  bool overlap_shrunk(const Box& a, const Box& b) const {
-    const Scalar m2 = 2 * margin_;
-    return (a.lo.array() + m2 <= b.hi.array()).all() && (b.lo.array() + m2 <= a.hi.array()).all();
   }
   void add_point_triangle(const Elements& e, int v, int t) {
     const Element& pe = e.points[std::size_t(v)];
@@ -253,6 +267,9 @@ class SurfaceCandidates {
   long full_count_ = 0;
   Layer points_, triangles_, edges_;
   std::vector<ElementPair> pairs_;
+  std::vector<Element> points_seen_, edges_seen_, triangles_seen_;  // the last full()'s
+  bool self_seen_ = false;
+  std::vector<char> all_moved_;
 };
 
 }  // namespace massspring::contact

@@ -166,11 +166,12 @@ class SurfaceContact {
 
   // The cloth's boxes are grown by half the largest distance two cloth elements are tested at
   // (the thickness), an obstacle's by its gap; the stored ones by a further margin of half the
-  // thickness (at least 0.5 mm), room for the impulses of the rounds.
-  void candidates(Scalar h, bool full) {
-    if (full) {
+  // thickness (at least 0.5 mm), room for the impulses of the rounds and for the next steps of a
+  // cloth that moves less than that per step.
+  void candidates(Scalar h, bool first) {
+    if (first) {
       const Scalar grow = std::max(h, e_.self_gap) / 2;
-      broad_.full(e_, grow, std::max(grow, Scalar(5e-4)));
+      broad_.next_step(e_, grow, std::max(grow, Scalar(5e-4)));
     } else {
       broad_.refresh(e_, moved_);
     }
