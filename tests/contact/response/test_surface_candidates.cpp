@@ -20,13 +20,19 @@ namespace contact = massspring::contact;
 using Box = contact::AlignedBox3<double>;
 using PairSet = std::set<std::tuple<int, int, int>>;
 
-// The swept box of points `ids` over x0 -> x1, grown by g: written apart from SurfaceElements.
+// The swept box of points `ids` over x0 -> x1 (with `ahead`, also over x1 -> 2 x1 - x0, a next
+// step at the same velocity), grown by g: written apart from SurfaceElements.
 Box swept(const massspring::Points<double>& x0, const massspring::Points<double>& x1,
-          std::initializer_list<int> ids, double g) {
+          std::initializer_list<int> ids, double g, bool ahead = false) {
   Box b{x0.row(*ids.begin()).transpose(), x0.row(*ids.begin()).transpose()};
   for (int i : ids) {
     b.lo = b.lo.cwiseMin(x0.row(i).transpose()).cwiseMin(x1.row(i).transpose());
     b.hi = b.hi.cwiseMax(x0.row(i).transpose()).cwiseMax(x1.row(i).transpose());
+    if (ahead) {
+      const Eigen::Vector3d next = (2 * x1.row(i) - x0.row(i)).transpose();
+      b.lo = b.lo.cwiseMin(next);
+      b.hi = b.hi.cwiseMax(next);
+    }
   }
   b.lo.array() -= g;
   b.hi.array() += g;
@@ -35,21 +41,24 @@ Box swept(const massspring::Points<double>& x0, const massspring::Points<double>
 
 // Every pair SurfaceElements::pair_gap() tests (cloth-cloth only with self-collision; never
 // obstacle-obstacle) whose boxes overlap, each element's box grown as SurfaceElements::grow_of()
-// says (the cloth's by g, an obstacle's by its gap) and by `extra`, sharing no point.
+// says (the cloth's by g, an obstacle's by its gap) and by `extra`, sharing no point. With a
+// positive `extra`, the boxes SurfaceCandidates stores: over the next step at the same velocity
+// too.
 PairSet brute_force(const contact::SurfaceElements<double>& e, double g, double extra = 0) {
+  const bool ahead = extra > 0;
   PairSet out;
   const auto& x0 = e.x0;
   const auto& x1 = e.x1;
   for (std::size_t v = 0; v < e.points.size(); ++v) {
     const auto& pv = e.points[v];
     const int i = pv.p[0];
-    const Box bp = swept(x0, x1, {i}, e.grow_of(pv, g) + extra);
+    const Box bp = swept(x0, x1, {i}, e.grow_of(pv, g) + extra, ahead);
     for (std::size_t t = 0; t < e.triangles.size(); ++t) {
       const auto& tt = e.triangles[t];
       const auto& c = tt.p;
       if (e.pair_gap(pv.owner, tt.owner) < 0) continue;
       if (i == c[0] || i == c[1] || i == c[2]) continue;
-      if (bp.overlaps(swept(x0, x1, {c[0], c[1], c[2]}, e.grow_of(tt, g) + extra)))
+      if (bp.overlaps(swept(x0, x1, {c[0], c[1], c[2]}, e.grow_of(tt, g) + extra, ahead)))
         out.insert({0, int(v), int(t)});
     }
   }
@@ -59,8 +68,8 @@ PairSet brute_force(const contact::SurfaceElements<double>& e, double g, double 
       const auto& q = e.edges[b].p;
       if (e.pair_gap(e.edges[a].owner, e.edges[b].owner) < 0) continue;
       if (p[0] == q[0] || p[0] == q[1] || p[1] == q[0] || p[1] == q[1]) continue;
-      if (swept(x0, x1, {p[0], p[1]}, e.grow_of(e.edges[a], g) + extra)
-              .overlaps(swept(x0, x1, {q[0], q[1]}, e.grow_of(e.edges[b], g) + extra)))
+      if (swept(x0, x1, {p[0], p[1]}, e.grow_of(e.edges[a], g) + extra, ahead)
+              .overlaps(swept(x0, x1, {q[0], q[1]}, e.grow_of(e.edges[b], g) + extra, ahead)))
         out.insert({1, int(a), int(b)});
     }
   return out;

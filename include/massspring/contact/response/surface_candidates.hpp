@@ -11,18 +11,20 @@
 /// point, and pairs SurfaceElements::pair_gap() excludes (obstacle with obstacle; cloth with
 /// cloth without self-collision) are left out.
 ///
-/// Each element keeps a stored box that holds its current one: at first its current box grown by
-/// a further margin m. The list holds every pair whose stored boxes overlap, a superset of the
+/// Each element keeps a stored box that holds its current one: the box of its points at the start
+/// and end of the step and at the end of a next step at the same velocity (x1 + (x1 - x0)), grown
+/// by grow_of() and a further margin m. The list holds every pair whose stored boxes overlap, a superset of the
 /// candidates that stays one while every current box stays inside its stored box. full() stores
 /// every element's box, hashes them (contact/broad_phase/box_hash.hpp) and lists the pairs;
 /// without self-collision only the obstacles' elements are queried, as every pair then has one.
 /// refresh() follows a round that moved the end positions of the points flagged in `moved`, and
 /// next_step() a new step of the same elements (every point moved): an element whose current box
-/// has left its stored box has escaped; its stored box becomes its current box grown by m, its
+/// has left its stored box has escaped; its stored box is taken again from its current motion, its
 /// pairs are dropped and listed again from that box, against the hash for the elements in place
 /// and a small second hash of the escaped ones (the first still has them in the cells of their old
-/// boxes). Elements that stay inside keep their pairs untouched, so a cloth that rests or moves
-/// less than m per step costs O(elements) a step, not a hash query per element. More than a
+/// boxes). Elements that stay inside keep their pairs untouched, so a cloth that rests, or moves
+/// at a velocity that changes by less than m / dt per step, costs O(elements) a step, not a hash
+/// query per element. More than a
 /// quarter of the elements of a kind escaped since the last full() (then a new hash costs less
 /// than the queries), or other elements than the last step's (a new surface, collider or
 /// self-collision switch): full() instead.
@@ -152,6 +154,17 @@ class SurfaceCandidates {
     bool hashed = false;          // hash holds `stored` as full() left it
     bool escaped_hashed = false;  // escaped_hash holds escaped_boxes as they are
 
+    // The box of the element's points at x0, x1 and x1 + (x1 - x0), grown by g.
+    static Box ahead(const Elements& e, const Element& element, int count, Scalar g) {
+      Box b = e.swept(element, count, g);
+      for (int k = 0; k < count; ++k) {
+        const int i = element.p[std::size_t(k)];
+        const Vector3<Scalar> next = 2 * e.p1(i) - e.p0(i);
+        b.lo = b.lo.cwiseMin(next - Vector3<Scalar>::Constant(g));
+        b.hi = b.hi.cwiseMax(next + Vector3<Scalar>::Constant(g));
+      }
+      return b;
+    }
     // Hashes the stored boxes, unless done since the last full().
     void hash_boxes(Scalar cell_size) {
       cell = cell_size;
@@ -164,7 +177,7 @@ class SurfaceCandidates {
                Scalar margin) {
       stored.resize(elements.size());
       for (std::size_t i = 0; i < elements.size(); ++i)
-        stored[i] = e.swept(elements[i], count, e.grow_of(elements[i], grow) + margin);
+        stored[i] = ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
       escaped.assign(elements.size(), 0);
       escaped_ids.clear();
       escaped_hashed = false;
@@ -187,7 +200,7 @@ class SurfaceCandidates {
         if (!escaped[i]) escaped_ids.push_back(int(i));
         escaped[i] = 1;
         escaped_hashed = false;
-        stored[i] = {now.lo.array() - margin, now.hi.array() + margin};
+        stored[i] = ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
       }
       return escaped_ids.size() <= std::max<std::size_t>(64, elements.size() / 4);
     }
