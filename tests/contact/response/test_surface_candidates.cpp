@@ -2,7 +2,8 @@
 // edge-edge pair whose grown swept boxes overlap (and that shares no point) is listed once: by
 // full() exactly the pairs of the boxes grown by the margin too, and by refresh() and
 // next_step() after rounds and steps that move end positions by small steps, by large ones
-// (escaping the stored boxes) and by very many (falling back to full()).
+// (escaping the stored boxes) and by very many (falling back to full()), always in the same
+// order.
 #include <doctest/doctest.h>
 
 #include <Eigen/Core>
@@ -75,11 +76,17 @@ PairSet brute_force(const contact::SurfaceElements<double>& e, double g, double 
   return out;
 }
 
+// The listed pairs as a set; each must be listed once, in ascending order of (kind, a, b).
 PairSet listed(const std::vector<contact::ElementPair>& pairs) {
   PairSet out;
-  for (const auto& q : pairs) {
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto& q = pairs[k];
     const bool fresh = out.insert({q.kind, q.a, q.b}).second;
     REQUIRE(fresh);  // each pair once
+    if (k > 0) {
+      const auto& p = pairs[k - 1];
+      REQUIRE(std::make_tuple(p.kind, p.a, p.b) < std::make_tuple(q.kind, q.a, q.b));
+    }
   }
   return out;
 }

@@ -50,7 +50,10 @@ class SurfaceCandidates {
   using Elements = SurfaceElements<Scalar>;
   using Element = typename Elements::Element;
 
-  /// @brief The candidates, point-triangle and edge-edge, each once.
+  /// @brief The candidates, point-triangle and edge-edge, each once, in ascending order of
+  /// (kind, a, b) whatever the list's history: the rounds of impulses apply them in this order,
+  /// so a step gives the same result after a full() as after a next_step() (a state saved and
+  /// resumed continues bit for bit).
   [[nodiscard]] const std::vector<ElementPair>& pairs() const { return pairs_; }
 
   /// @brief Lists every candidate of e's motion with the cloth's boxes grown by `grow` [m]
@@ -81,11 +84,18 @@ class SurfaceCandidates {
     }
     triangles_.hash_boxes(cell_);
     edges_.hash_boxes(cell_);
-    for (std::size_t v = 0; v < e.points.size(); ++v)
+    // Each query's pairs share their first element: sorted by the second, the list is in order.
+    for (std::size_t v = 0; v < e.points.size(); ++v) {
+      const std::size_t first = pairs_.size();
       triangles_.hash.query(points_.stored[v], [&](int t) { add_point_triangle(e, int(v), t); });
-    for (std::size_t a = 0; a < e.edges.size(); ++a)
+      std::sort(pairs_.begin() + std::ptrdiff_t(first), pairs_.end(), before);
+    }
+    for (std::size_t a = 0; a < e.edges.size(); ++a) {
+      const std::size_t first = pairs_.size();
       edges_.hash.query(
           edges_.stored[a], [&](int b) { add_edge_edge(e, int(a), b); }, int(a));
+      std::sort(pairs_.begin() + std::ptrdiff_t(first), pairs_.end(), before);
+    }
   }
 
   /// @brief Brings the list to the next step's motion of the same elements (see the file
@@ -124,6 +134,7 @@ class SurfaceCandidates {
                          : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
     };
     pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), stale), pairs_.end());
+    const std::size_t kept = pairs_.size();  // still in order
     if (!points_.moved_ids.empty()) triangles_.hash_boxes(cell_);
     for (int v : points_.moved_ids)
       triangles_.query(points_.stored[std::size_t(v)], [&](int t) { add_point_triangle(e, v, t); });
@@ -137,6 +148,13 @@ class SurfaceCandidates {
       edges_.query(edges_.stored[std::size_t(a)], [&](int b) {
         if (!edges_.moved[std::size_t(b)] || b > a) add_edge_edge(e, a, b);
       });
+    // The new pairs in order, merged with the kept ones.
+    if (pairs_.size() == kept) return;
+    const auto middle = pairs_.begin() + std::ptrdiff_t(kept);
+    std::sort(middle, pairs_.end(), before);
+    merged_.resize(pairs_.size());  // keeps its capacity: no allocation after the first steps
+    std::merge(pairs_.begin(), middle, middle, pairs_.end(), merged_.begin(), before);
+    pairs_.swap(merged_);
   }
 
   /// @brief How many times full() ran since construction.
@@ -223,9 +241,14 @@ class SurfaceCandidates {
     }
   };
 
+  // The order of the list: by kind, then first element, then second.
+  static bool before(const ElementPair& x, const ElementPair& y) {
+    return x.kind != y.kind ? x.kind < y.kind : x.a != y.a ? x.a < y.a : x.b < y.b;
+  }
+
   // full()'s pairs without self-collision, where every pair has an obstacle's element: only the
   // obstacles' points, triangles and edges are queried (the cloth's with one another would all be
-  // rejected by pair_gap()), the cloth's points through their own hash.
+  // rejected by pair_gap()), the cloth's points through their own hash; then sorted.
   void obstacle_pairs(const Elements& e) {
     for (std::size_t v = 0; v < e.points.size(); ++v) {
       if (e.points[v].owner < 0) continue;
@@ -253,6 +276,7 @@ class SurfaceCandidates {
         if (e.edges[std::size_t(b)].owner < 0) add_edge_edge(e, int(a), b);
       });
     }
+    std::sort(pairs_.begin(), pairs_.end(), before);
   }
 
   static bool inside(const Box& b, const Box& outer) {
@@ -279,7 +303,7 @@ class SurfaceCandidates {
   Scalar grow_ = 0, margin_ = 0, cell_ = 1;
   long full_count_ = 0;
   Layer points_, triangles_, edges_;
-  std::vector<ElementPair> pairs_;
+  std::vector<ElementPair> pairs_, merged_;
   std::vector<Element> points_seen_, edges_seen_, triangles_seen_;  // the last full()'s
   bool self_seen_ = false;
   std::vector<char> all_moved_;

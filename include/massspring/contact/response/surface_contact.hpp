@@ -58,6 +58,7 @@
 
 #include "massspring/contact/ccd/additive_ccd.hpp"
 #include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/distance/bounding_balls.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/contact/response/impact_zones.hpp"
@@ -213,7 +214,11 @@ class SurfaceContact {
   int repel(Scalar h, Scalar mu) {
     int count = 0;
     for (const Pair& q : broad_.pairs()) {
-      if (!cloth_pair(q) || apart(e_.points_of(q), q.kind == 0 ? 1 : 2, h, false)) continue;
+      const std::array<int, 4> p = e_.points_of(q);
+      const int split = q.kind == 0 ? 1 : 2;
+      if (!cloth_pair(q) || apart(p, split, h, false) ||
+          !balls_within<Scalar>(at(p, e_.x1), split, h))
+        continue;
       const Stencil s = e_.stencil(q, [&](int i) { return e_.p1(i); });
       if (!(s.distance < h)) continue;
       Scalar approach = 0;  // relative displacement along n over the step (< 0: closer)
@@ -245,6 +250,11 @@ class SurfaceContact {
     }
     return false;
   }
+  // The positions of points p in x (x0 or x1).
+  static std::array<V3, 4> at(const std::array<int, 4>& p, const Points<Scalar>& x) {
+    return {V3(x.row(p[0]).transpose()), V3(x.row(p[1]).transpose()), V3(x.row(p[2]).transpose()),
+            V3(x.row(p[3]).transpose())};
+  }
   [[nodiscard]] bool cloth_pair(const Pair& q) const {
     return q.kind == 0
                ? e_.points[std::size_t(q.a)].owner < 0 && e_.triangles[std::size_t(q.b)].owner < 0
@@ -273,8 +283,12 @@ class SurfaceContact {
                     moved_[std::size_t(p[2])] || moved_[std::size_t(p[3])]))
         continue;
       if (same_zone(p[0], p[1], p[2], p[3])) continue;
-      // Swept boxes farther apart than the gap along an axis: no contact during the step.
-      if (apart(p, q.kind == 0 ? 1 : 2, gap, true)) continue;
+      // Swept boxes farther apart than the gap along an axis, or bounding balls that stay
+      // farther apart: no contact during the step.
+      const int split = q.kind == 0 ? 1 : 2;
+      if (apart(p, split, gap, true) ||
+          !swept_balls_within<Scalar>(at(p, e_.x0), at(p, e_.x1), split, gap))
+        continue;
       // The gap first; only a pair it reports needs the start distance (a pair that starts
       // closer keeps half of it): with a smaller gap the CCD could only report less.
       CcdResult<Scalar> r = ccd(q.kind, p, gap);
