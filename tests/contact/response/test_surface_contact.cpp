@@ -361,3 +361,30 @@ TEST_CASE("surface contact: a copy of a system has its own pass and steps as the
   stepper.step(s);
   CHECK(moved.positions() == s.positions());
 }
+
+// The pass keeps its work arrays (the broad phase's boxes, hashes and pairs, kept from step to
+// step): once the two cloths lie on the floor and on each other, a step allocates nothing.
+TEST_CASE("surface contact: once the work arrays have grown, a step allocates nothing") {
+  System s = surface_system(stacked_cloths());
+  s.set_self_collision(SelfCollision<double>{});
+  massspring::FastMassSpring<System> solver;
+  solver.options.iterations = 10;
+  solver.options.initial_guess = massspring::InitialGuess::Inertial;
+  solver.options.contact_weight = 16;
+  solver.precompute(s, 1.0 / 30);
+  for (int k = 0; k < 60; ++k) REQUIRE(solver.step(s).ok());  // 2 s: both cloths down
+  long impulses = 0;
+  std::size_t allocations = 0;
+  {
+    massspring::test::CountAllocations count;
+    for (int k = 0; k < 30; ++k) {
+      const StepReport r = solver.step(s);
+      impulses += r.contact_impulses;
+      if (!r.ok()) break;
+    }
+    allocations = count.count();
+  }
+  CHECK(allocations == 0);
+  CHECK(impulses > 0);  // the pass worked in the counted steps
+  CHECK(massspring::test::count_crossings(s.positions(), s.surface()) == 0);
+}

@@ -83,6 +83,21 @@ class BoxHash {
     query_ = 0;
   }
 
+  /// @brief Makes room for builds of up to `boxes` boxes entered in up to `entries` cells in all,
+  /// so that they allocate nothing.
+  void reserve(std::size_t boxes, std::size_t entries) {
+    keys_.reserve(entries);
+    ids_.reserve(entries);
+    large_.reserve(boxes);
+    stamp_.reserve(boxes);
+    std::size_t buckets = 1;
+    while (buckets < entries + 1) buckets *= 2;
+    start_.reserve(buckets + 1);
+    fill_.reserve(buckets);
+  }
+  /// @brief Cells entered by the last build, over all its hashed boxes.
+  [[nodiscard]] std::size_t entries() const { return ids_.size(); }
+
   /// @brief Calls visit(i) once for each stored box i > `above` that overlaps `q` (every one with
   /// the default -1). A bucket holds its boxes in ascending order and is read from its end, so
   /// the boxes at or below `above` cost nothing: querying each box of the stored set with its own

@@ -70,8 +70,11 @@ class ImpactZones {
     starts.clear();
     for (int p = 0; p < int(parent_.size()); ++p)
       if (in_zone_[std::size_t(p)]) members.push_back(p);
-    std::stable_sort(members.begin(), members.end(),
-                     [&](int a, int b) { return find(a) < find(b); });
+    // By zone, each zone's particles ascending (std::sort: no buffer, where stable_sort takes one).
+    std::sort(members.begin(), members.end(), [&](int a, int b) {
+      const int ra = find(a), rb = find(b);
+      return ra != rb ? ra < rb : a < b;
+    });
     for (std::size_t k = 0; k < members.size(); ++k)
       if (k == 0 || find(members[k]) != find(members[k - 1])) starts.push_back(int(k));
     starts.push_back(int(members.size()));

@@ -189,6 +189,9 @@ class SurfaceCandidates {
       if (hashed) return;
       hash.build(stored, cell_size);
       hashed = true;
+      // The escaped ones, a part of these, fit in as much room.
+      escaped_boxes.reserve(stored.size());
+      escaped_hash.reserve(stored.size(), hash.entries());
     }
 
     void store(const Elements& e, const std::vector<Element>& elements, int count, Scalar grow,
