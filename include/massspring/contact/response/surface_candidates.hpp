@@ -13,8 +13,8 @@
 ///
 /// Each element keeps a stored box that holds its current one: the box of its points at the start
 /// and end of the step and at the end of a next step at the same velocity (x1 + (x1 - x0)), grown
-/// by grow_of() and a further margin m. The list holds every pair whose stored boxes overlap, a superset of the
-/// candidates that stays one while every current box stays inside its stored box. full() stores
+/// by grow_of() and a further margin m. The list holds every pair whose stored boxes overlap: a
+/// superset of the candidates while every current box stays inside its stored box. full() stores
 /// every element's box, hashes them (contact/broad_phase/box_hash.hpp) and lists the pairs;
 /// without self-collision only the obstacles' elements are queried, as every pair then has one.
 /// refresh() follows a round that moved the end positions of the points flagged in `moved`, and
@@ -22,12 +22,12 @@
 /// has left its stored box has escaped; its stored box is taken again from its current motion, its
 /// pairs are dropped and listed again from that box, against the hash for the elements in place
 /// and a small second hash of the escaped ones (the first still has them in the cells of their old
-/// boxes). Elements that stay inside keep their pairs untouched, so a cloth that rests, or moves
-/// at a velocity that changes by less than m / dt per step, costs O(elements) a step, not a hash
-/// query per element. More than a
-/// quarter of the elements of a kind escaped since the last full() (then a new hash costs less
-/// than the queries), or other elements than the last step's (a new surface, collider or
-/// self-collision switch): full() instead.
+/// boxes). Elements that stay inside keep their pairs untouched, so a cloth that rests, or whose
+/// displacement changes by less than m from one step to the next, costs O(elements) a step, not a
+/// hash query per element.
+/// More than a quarter of the elements of a kind escaped since the last full() (then a new hash
+/// costs less than the queries), or other elements than the last step's (a new surface, collider
+/// or self-collision switch): full() instead.
 /// Cost: full() O(elements x cells per box); refresh() and next_step() O(elements + pairs), plus
 /// one query per escaped element.
 ///
@@ -204,7 +204,7 @@ class SurfaceCandidates {
       escaped_hashed = false;
     }
     // Flags the elements with a moved point whose current box left the stored one, and stores
-    // the current box grown by the margin; false when too many have escaped their stored boxes.
+    // their box again (ahead()); false when too many have escaped their stored boxes.
     bool update(const Elements& e, const std::vector<Element>& elements, int count,
                 const std::vector<char>& moved_points, Scalar grow, Scalar margin) {
       moved.assign(elements.size(), 0);
@@ -226,7 +226,7 @@ class SurfaceCandidates {
       return escaped_ids.size() <= std::max<std::size_t>(64, elements.size() / 4);
     }
     // Calls visit(i) for each element i whose stored box overlaps q: through the hash for the
-    // elements in place, directly for the escaped ones.
+    // elements in place, through the second hash for the escaped ones.
     template <class Visit>
     void query(const Box& q, Visit&& visit) {
       hash.query(q, [&](int i) {
