@@ -80,6 +80,7 @@ class SurfaceCandidates {
     pairs_.clear();
     if (!e.self) {
       obstacle_pairs(e);
+      reserve_refresh(e);
       return;
     }
     triangles_.hash_boxes(cell_);
@@ -96,6 +97,7 @@ class SurfaceCandidates {
           edges_.stored[a], [&](int b) { add_edge_edge(e, int(a), b); }, int(a));
       std::sort(pairs_.begin() + std::ptrdiff_t(first), pairs_.end(), before);
     }
+    reserve_refresh(e);
   }
 
   /// @brief Brings the list to the next step's motion of the same elements (see the file
@@ -202,6 +204,10 @@ class SurfaceCandidates {
       escaped.assign(elements.size(), 0);
       escaped_ids.clear();
       escaped_hashed = false;
+      // refresh()'s arrays, so that the steps after the first allocate nothing.
+      moved.reserve(elements.size());
+      moved_ids.reserve(elements.size());
+      escaped_ids.reserve(elements.size());
     }
     // Flags the elements with a moved point whose current box left the stored one, and stores
     // their box again (ahead()); false when too many have escaped their stored boxes.
@@ -243,6 +249,15 @@ class SurfaceCandidates {
       escaped_hash.query(q, [&](int j) { visit(escaped_ids[std::size_t(j)]); });
     }
   };
+
+  // Makes room for the refresh() and next_step() that follow full(): the flags of every point,
+  // and twice the pairs listed, in the list and in the merge's scratch.
+  void reserve_refresh(const Elements& e) {
+    all_moved_.reserve(std::size_t(e.x1.rows()));
+    const std::size_t pairs = std::max<std::size_t>(64, 2 * pairs_.size());
+    pairs_.reserve(pairs);
+    merged_.reserve(pairs);
+  }
 
   // The order of the list: by kind, then first element, then second.
   static bool before(const ElementPair& x, const ElementPair& y) {
