@@ -18,7 +18,8 @@ using BbPoints = std::array<BbV3, 4>;
 double bb_exact(const BbPoints& x, int split) {
   if (split == 1)
     return std::sqrt(massspring::contact::point_triangle_squared_distance(x[0], x[1], x[2], x[3]));
-  return std::sqrt(massspring::contact::edge_edge_distance(x[0], x[1], x[2], x[3]).squared_distance);
+  return std::sqrt(
+      massspring::contact::edge_edge_distance(x[0], x[1], x[2], x[3]).squared_distance);
 }
 
 BbPoints bb_random(std::mt19937& rng, double spread) {

@@ -98,7 +98,7 @@ struct Crumpled {
   massspring::Edges edges;
 };
 
-// A 9 x 9 cloth of 10 cm crumpled by random end positions.
+// A 9 x 9 cloth of 10 cm crumpled by random end positions, with its triangles' edges.
 Crumpled crumpled(std::mt19937& rng) {
   massspring::ClothOptions o;
   o.columns = o.rows = 9;
@@ -116,7 +116,11 @@ Crumpled crumpled(std::mt19937& rng) {
   c.triangles.resize(Eigen::Index(cloth.faces.size()), 3);
   for (std::size_t f = 0; f < cloth.faces.size(); ++f)
     for (int k = 0; k < 3; ++k) c.triangles(Eigen::Index(f), k) = cloth.faces[f][std::size_t(k)];
-  c.edges = massspring::Edges(0, 2);
+  std::vector<std::pair<int, int>> list;  // the triangles' edges
+  massspring::detail::triangle_edges(c.triangles, list);
+  c.edges.resize(Eigen::Index(list.size()), 2);
+  for (std::size_t k = 0; k < list.size(); ++k)
+    c.edges.row(Eigen::Index(k)) << list[k].first, list[k].second;
   return c;
 }
 }  // namespace
@@ -125,14 +129,7 @@ TEST_CASE("SurfaceCandidates: full() and refresh() list every overlapping pair o
   std::mt19937 rng(3);
   Crumpled c = crumpled(rng);
   REQUIRE(c.triangles.rows() > 0);
-  massspring::Edges edges;
-  {
-    std::vector<std::pair<int, int>> list;
-    massspring::detail::triangle_edges(c.triangles, list);
-    edges.resize(Eigen::Index(list.size()), 2);
-    for (std::size_t k = 0; k < list.size(); ++k)
-      edges.row(Eigen::Index(k)) << list[k].first, list[k].second;
-  }
+  const massspring::Edges& edges = c.edges;
   const std::vector<int> pinned;
   const std::optional<contact::SelfCollision<double>> self = contact::SelfCollision<double>{};
   const contact::ColliderSet<double> colliders;
@@ -183,14 +180,7 @@ TEST_CASE("SurfaceCandidates: full() and refresh() list every overlapping pair o
 TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacle's element") {
   std::mt19937 rng(5);
   Crumpled c = crumpled(rng);
-  massspring::Edges edges;
-  {
-    std::vector<std::pair<int, int>> list;
-    massspring::detail::triangle_edges(c.triangles, list);
-    edges.resize(Eigen::Index(list.size()), 2);
-    for (std::size_t k = 0; k < list.size(); ++k)
-      edges.row(Eigen::Index(k)) << list[k].first, list[k].second;
-  }
+  const massspring::Edges& edges = c.edges;
   const std::vector<int> pinned;
   const std::optional<contact::SelfCollision<double>> off;
   contact::ColliderSet<double> colliders;
@@ -238,14 +228,7 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
 TEST_CASE("SurfaceCandidates: next_step() over steps keeps every overlapping pair") {
   std::mt19937 rng(7);
   Crumpled c = crumpled(rng);
-  massspring::Edges edges;
-  {
-    std::vector<std::pair<int, int>> list;
-    massspring::detail::triangle_edges(c.triangles, list);
-    edges.resize(Eigen::Index(list.size()), 2);
-    for (std::size_t k = 0; k < list.size(); ++k)
-      edges.row(Eigen::Index(k)) << list[k].first, list[k].second;
-  }
+  const massspring::Edges& edges = c.edges;
   const std::vector<int> pinned;
   std::optional<contact::SelfCollision<double>> self = contact::SelfCollision<double>{};
   contact::ColliderSet<double> colliders;

@@ -165,7 +165,7 @@ class SurfaceCandidates {
  private:
   // The boxes and hash of one kind of element (points, edges or triangles).
   struct Layer {
-    std::vector<Box> stored;  // grown by grow_of() + margin; hashed unless escaped
+    std::vector<Box> stored;  // ahead(), grown by grow_of() + margin; hashed unless escaped
     std::vector<char> moved, escaped;  // moved: escaped in the last update(), pairs to list
     std::vector<int> moved_ids, escaped_ids;
     std::vector<Box> escaped_boxes;  // stored[escaped_ids[j]], hashed in escaped_hash
