@@ -15,7 +15,8 @@ reference's largest kinetic energy). Writes OUT_DIR/pareto_<scene>.png (as
 scripts/plot_pareto.py draws docs/images/pareto_<scene>.png) and prints, per error level, the
 cheapest setting and its cost relative to the cheapest setting at 1e-1, beside the same from
 docs/benchmarks.md, and from each pareto.cpp output given with --csv (its cheapest setting's cost
-over its own cost at 1e-1: several runs of pareto.cpp show its run-to-run spread). Needs h5py and matplotlib (Debian's python3-h5py, python3-matplotlib).
+over its own cost at 1e-1: several runs of pareto.cpp show its run-to-run spread). Needs h5py
+and matplotlib (Debian's python3-h5py, python3-matplotlib).
 
 The per-step times are taken in Python around each step() call, so they include the binding's
 call (about 1 us, docs/python.md): negligible on the cloths (0.1 ms and more per step), dominant on
