@@ -1,5 +1,5 @@
-// massspring.ForwardEuler, SymplecticEuler and RK4 (integrators/). They have no options in C++,
-// so none here.
+// massspring.ForwardEuler, SymplecticEuler and RK4 (integrators/). They have no options; their one
+// C++ setting, set_swap_buffers, is fixed here (below), not exposed.
 //
 // By default the C++ integrators end a step by swapping their work buffers with the system's
 // positions and velocities (no copy). A numpy view of sys.positions points at the system's
