@@ -4,18 +4,21 @@ massspring.sweep spec (docs/sweeps.md), the same runs over the same scenes
 (massspring.sweep.generators:pareto), plus two RK4 reference runs per scene.
 
     PYTHONPATH=build/python python3 benchmarks/pareto_sweep.py [--scenes chain,net,...] [--out F]
+        [--min-time SECONDS]
     python3 -m massspring.sweep benchmarks/pareto_sweep.json --out out/pareto_sweep.h5
     python3 scripts/plot_pareto_sweep.py out/pareto_sweep.h5 out/pareto_sweep
 
 Each run steps its scene to the end time T (1 s; the orbit 1.5 pi s) at dt = T / ceil(T / dt0),
 as pareto.cpp does, with no energy guard (a run that does not stay finite is "diverged"; one whose
-error exceeds 1 counts as diverged in the plot), and a budget of 60 s projected from its first
-steps (past it: "skipped"). The explicit methods run from 0.9 x their stability_limit (at most
-1/30 s) down by 6 halvings; the implicit ones at 1/30 ... 1/480 s: BackwardEuler linearized and
-Newton, local-global at 1, 3, 10, 30 and 100 iterations, with tolerances 1e-3 and 1e-6 (at most
-1000 iterations) and with 10 Chebyshev iterations. The reference is RK4 at the step
-reference_solution() settled on for each scene (docs/benchmarks.md) and at half of it: the plot
-script measures errors against the finer and reports how far the two differ."""
+error exceeds 1 counts as diverged in the plot), a budget of 60 s projected from its first steps
+(past it: "skipped"), and, as pareto.cpp, a run shorter than --min-time repeated until its loops
+add up to it (the plot takes the fastest). The explicit methods run from 0.9 x their
+stability_limit (at most 1/30 s) down by 6 halvings; the implicit ones at 1/30 ... 1/480 s:
+BackwardEuler linearized and Newton, local-global at 1, 3, 10, 30 and 100 iterations, with
+tolerances 1e-3 and 1e-6 (at most 1000 iterations) and with 10 Chebyshev iterations. The
+reference is RK4 at the step reference_solution() settled on for each scene (docs/benchmarks.md)
+and at half of it: the plot script measures errors against the finer and reports how far the two
+differ."""
 
 import argparse
 import json
@@ -84,6 +87,9 @@ def runs_of(scene):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", default=",".join(SCENES))
+    parser.add_argument("--min-time", type=float, default=0.2,
+                        help="repeat each run shorter than this [s] (timed only) until its loops "
+                             "add up to it, as pareto.cpp's --min-time (default 0.2); 0: once")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__),
                                                       "pareto_sweep.json"))
     args = parser.parse_args()
@@ -94,7 +100,7 @@ def main():
     runs = [r for s in scenes for r in runs_of(s)]
     spec = {
         "description": "benchmarks/pareto.cpp's study (written by benchmarks/pareto_sweep.py)",
-        "base": {"guard_growth": 0, "budget": 60, "energy": True},
+        "base": {"guard_growth": 0, "budget": 60, "energy": True, "min_time": args.min_time},
         "runs": runs,
     }
     with open(args.out, "w") as handle:

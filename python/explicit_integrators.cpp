@@ -1,12 +1,13 @@
-// massspring.ForwardEuler, SymplecticEuler and RK4 (integrators/). They have no options in C++,
-// so none here.
+// massspring.ForwardEuler, SymplecticEuler and RK4 (integrators/). They have no options; their one
+// C++ setting, set_swap_buffers, is fixed here (below), not exposed.
 //
-// The C++ integrators end a step by swapping their work buffers with the system's positions and
-// velocities (no copy). A numpy view of sys.positions points at the system's buffer, which after
-// such a swap would belong to the integrator (and die with it). So the binding steps the system
-// with its own buffers swapped out and copies the result back into them: the views always show
-// the system's state and live as long as the system. The copies (2 x n x 3 doubles per array)
-// change no value: the trajectory is the C++ one bit for bit.
+// By default the C++ integrators end a step by swapping their work buffers with the system's
+// positions and velocities (no copy). A numpy view of sys.positions points at the system's
+// buffer, which after such a swap would belong to the integrator (and die with it). So the
+// binding's integrators are set to copy their end state into the system's buffers instead
+// (set_swap_buffers(false)): the views always show the system's state and live as long as the
+// system. The copy (n x 3 doubles per array) changes no value: the trajectory is the C++ one bit
+// for bit.
 
 #include "integrator.hpp"
 
@@ -16,10 +17,14 @@ namespace {
 
 template <class Integrator>
 void bind_explicit(py::module_& m, const char* name, const char* doc) {
-  using Bound = KeepBuffers<Integrator>;
-  py::class_<Bound> c(m, name, doc);
-  c.def(py::init<>());
-  bind_integrator_calls<Bound>(m, c, [](Bound& b, System& system) { return b.step(system); });
+  py::class_<Integrator> c(m, name, doc);
+  c.def(py::init([] {
+    Integrator integrator;
+    integrator.set_swap_buffers(false);  // the system's arrays keep their memory
+    return integrator;
+  }));
+  bind_integrator_calls<Integrator>(m, c,
+                                    [](Integrator& i, System& system) { return i.step(system); });
 }
 
 }  // namespace

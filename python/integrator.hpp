@@ -7,38 +7,9 @@
 
 namespace massspring::python {
 
-/// @brief An explicit integrator that leaves the system's buffers in place (see
-/// explicit_integrators.cpp: the C++ ones swap their work buffers with the system's).
-template <class Integrator>
-struct KeepBuffers {
-  Integrator integrator;
-  Points x, v;  // the buffers swapped in for the step
-
-  void precompute(const System& system, double dt) { integrator.precompute(system, dt); }
-  [[nodiscard]] double dt() const { return integrator.dt(); }
-
-  StepReport step(System& system) {
-    x = system.positions();  // the same values in another buffer (allocates once)
-    v = system.velocities();
-    system.positions().swap(x);  // the system's own buffers wait in x, v
-    system.velocities().swap(v);
-    struct Restore {  // on return and on an exception alike
-      System& s;
-      Points &x, &v;
-      ~Restore() {
-        x = s.positions();  // the state the step left (or the one it started from)
-        v = s.velocities();
-        s.positions().swap(x);  // back into the system's own buffers
-        s.velocities().swap(v);
-      }
-    } restore{system, x, v};
-    return integrator.step(system);
-  }
-};
-
 /// @brief Adds precompute, step and dt to an integrator class, and DivergenceGuard.step for it
 /// (the guard must be bound first). `Step` is how the binding steps
-/// (the integrator's own step(), or one that keeps the system's buffers: explicit_integrators.cpp).
+/// (the integrator's own step(), or another call on it).
 /// step() and precompute() run without the GIL; a second thread's call on the same system or
 /// integrator meanwhile raises massspring.Error (InUse).
 template <class Integrator, class Class, class Step>

@@ -4,15 +4,19 @@ file, and compares it with docs/benchmarks.md's tables by ratios (the machines d
 ratios should not).
 
     python3 scripts/plot_pareto_sweep.py out/pareto_sweep.h5 [OUT_DIR] [--docs docs/benchmarks.md]
+        [--csv out/pareto/pareto.csv ...]
 
 For each scene: each run's cost (the sum of its per-step times over its simulated time, in
 seconds per simulated second: the wall clock of step() alone, as pareto.cpp times its stepping
-loop), its error (the RMS distance of its end positions to the finer RK4 reference's, over the
-bounding-box diagonal of the start: trajectory_error) and its energy drift ((E(T) - E(0)) over the
+loop; of a run repeated for `min_time`, the fastest repetition's, as pareto.cpp takes), its error
+(the RMS distance of its end positions to the finer RK4 reference's, over the bounding-box
+diagonal of the start: trajectory_error) and its energy drift ((E(T) - E(0)) over the
 reference's largest kinetic energy). Writes OUT_DIR/pareto_<scene>.png (as
 scripts/plot_pareto.py draws docs/images/pareto_<scene>.png) and prints, per error level, the
 cheapest setting and its cost relative to the cheapest setting at 1e-1, beside the same from
-docs/benchmarks.md. Needs h5py and matplotlib (Debian's python3-h5py, python3-matplotlib).
+docs/benchmarks.md, and from each pareto.cpp output given with --csv (its cheapest setting's cost
+over its own cost at 1e-1: several runs of pareto.cpp show its run-to-run spread). Needs h5py
+and matplotlib (Debian's python3-h5py, python3-matplotlib).
 
 The per-step times are taken in Python around each step() call, so they include the binding's
 call (about 1 us, docs/python.md): negligible on the cloths (0.1 ms and more per step), dominant on
@@ -68,7 +72,12 @@ def read(path):
                 status = g.attrs["status"]
                 dt = float(g.attrs["dt"])
                 steps = int(g.attrs["final_step"])
-                seconds = float(np.sum(g["steps/time"][()])) if "steps" in g else math.nan
+                if "loop_seconds" in g:  # each repetition's loop; the fastest is the cost
+                    seconds = float(np.min(g["loop_seconds"][()]))
+                elif "steps" in g:
+                    seconds = float(np.sum(g["steps/time"][()]))
+                else:
+                    seconds = math.nan
                 p = {"scene": scene, "family": family, "setting": setting, "dt": dt,
                      "status": status, "steps": steps}
                 if status != "ok":
@@ -123,24 +132,42 @@ def docs_tables(path):
     return tables
 
 
+def csv_cheapest(path):
+    """{scene: [(threshold, point or None)]} from a pareto.cpp pareto.csv: its ok points with an
+    error of at most 1, cheapest per error level."""
+    by_scene = {}
+    for row in plot_pareto.read(path):
+        if row["status"] != "ok":
+            continue
+        p = dict(row, dt=float(row["dt"]), cost=float(row["cost"]), error=float(row["error"]))
+        if p["error"] <= 1:
+            by_scene.setdefault(p["scene"], []).append(p)
+    return {scene: cheapest(points) for scene, points in by_scene.items()}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("results")
     parser.add_argument("out", nargs="?", default="out/pareto_sweep")
     parser.add_argument("--docs", default=os.path.join(os.path.dirname(__file__), "..", "docs",
                                                        "benchmarks.md"))
+    parser.add_argument("--csv", action="append", default=[],
+                        help="a pareto.cpp pareto.csv to compare with (repeatable)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     scenes = read(args.results)
     documented = docs_tables(args.docs)
+    runs = [csv_cheapest(path) for path in args.csv]
     for scene, data in scenes.items():
         png = os.path.join(args.out, f"pareto_{scene}.png")
         plot_pareto.plot(scene, data["points"], data["ref"], png)
         print(f"\n### {scene}: {len(data['points'])} runs plotted, {len(data['other'])} not "
               f"(diverged or skipped); references differ by {data['change']:.2g}; {png}")
         print("| error at most | cheapest setting (sweep) | its error | cost / cost at 1e-1 | "
-              "docs: cheapest setting | docs: its error | docs: cost / cost at 1e-1 |")
-        print("|---:|---|---:|---:|---|---:|---:|")
+              "docs: cheapest setting | docs: its error | docs: cost / cost at 1e-1 |" +
+              "".join(f" csv {k + 1}: cheapest setting | csv {k + 1}: cost / cost at 1e-1 |"
+                      for k in range(len(runs))))
+        print("|---:|---|---:|---:|---|---:|---:|" + "---|---:|" * len(runs))
         mine = cheapest(data["points"])
         theirs = {t: (s, c, e) for t, s, c, e in documented.get(scene, [])}
         base = mine[0][1]["cost"] if mine[0][1] else math.nan
@@ -150,8 +177,14 @@ def main():
             ratio = p["cost"] / base if p else math.nan
             err = p["error"] if p else math.nan
             ds, dc, de = theirs.get(t, ("-", math.nan, math.nan))
-            print(f"| {t:.0e} | {setting} | {err:.3g} | {ratio:.3g} | {ds} | {de:.3g} | "
-                  f"{dc / docs_base:.3g} |")
+            line = (f"| {t:.0e} | {setting} | {err:.3g} | {ratio:.3g} | {ds} | {de:.3g} | "
+                    f"{dc / docs_base:.3g} |")
+            for run in runs:
+                rows = dict(run.get(scene, []))
+                q, first = rows.get(t), rows.get(THRESHOLDS[0])
+                line += (f" {plot_pareto.setting(q)} | {q['cost'] / first['cost']:.3g} |"
+                         if q and first else " - | - |")
+            print(line)
 
 
 if __name__ == "__main__":

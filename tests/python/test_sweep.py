@@ -246,3 +246,34 @@ def test_a_generator_function_brings_its_own_force_terms():
         assert solver.step(system).ok()
     assert np.array_equal(result["final_positions"], system.positions)
     assert abs(np.linalg.norm(system.positions[1]) - 1) < 1e-6  # still on its circle
+
+
+def test_min_time_repeats_a_short_run_and_keeps_its_first_trajectory(tmp_path):
+    """`min_time`: an ok run is repeated (timed only) until its loops add up to it; the stored
+    trajectory and statistics are the first loop's, loop_seconds holds every loop's time."""
+    from massspring.sweep import run_one
+    from massspring.sweep.spec import load
+    from massspring.sweep.store import Store
+
+    base = {"generate": "chain:8", "integrator": "symplectic-euler", "dt": 0.001, "frames": 20}
+    once = run_one(base)
+    repeated = run_one({**base, "min_time": 0.02})
+    assert once["status"] == repeated["status"] == "ok"
+    assert once["loop_seconds"].shape == (1,)
+    assert once["loop_seconds"][0] == np.sum(once["steps"]["time"])
+    loops = repeated["loop_seconds"]
+    assert len(loops) > 1 and np.sum(loops) >= 0.02 and np.all(loops > 0)
+    assert loops[0] == np.sum(repeated["steps"]["time"])
+    assert repeated["steps"]["time"].shape == (20,)
+    assert np.array_equal(once["final_positions"], repeated["final_positions"])
+    assert np.array_equal(once["final_velocities"], repeated["final_velocities"])
+    # a diverged run is not repeated
+    diverged = run_one({**base, "integrator": "forward-euler", "dt": 0.5, "min_time": 10})
+    assert diverged["status"] == "diverged" and diverged["loop_seconds"].shape == (1,)
+    # the file keeps each loop's time
+    spec = write_spec(str(tmp_path), runs=[{**base, "min_time": 0.02}], grid={})
+    run = load(spec)[1][0]
+    with Store(str(tmp_path / "results.h5")) as store:
+        store.write(run, repeated)
+    with h5py.File(tmp_path / "results.h5", "r") as f:
+        assert np.array_equal(f["runs"][run.id]["loop_seconds"][()], loops)

@@ -91,9 +91,12 @@ def test_views_follow_every_integrators_steps(make):
     solver = make()
     solver.precompute(s, 0.001)
     for _ in range(3):
+        before = x.copy(), v.copy()
         assert solver.step(s).ok()
         assert np.shares_memory(x, s.positions) and np.shares_memory(v, s.velocities)
         assert np.array_equal(x, s.positions.copy())
+        # the views taken before the steps see each step's state
+        assert not (np.array_equal(x, before[0]) and np.array_equal(v, before[1]))
     del solver  # the views belong to the system, not to the integrator
     gc.collect()
     assert np.isfinite(x).all() and x[8, 1] < points[8, 1]

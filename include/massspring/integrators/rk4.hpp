@@ -66,6 +66,12 @@ class RK4 {
   /// @brief The time step [s].
   [[nodiscard]] Scalar dt() const { return s_.dt_; }
 
+  /// @brief How step() hands its end state to the system: true (the default) swaps its work
+  /// arrays with the system's positions and velocities (no copy; those arrays change memory);
+  /// false copies into them (they keep their memory, so views of them stay valid, e.g. the
+  /// Python module's numpy arrays). The values are the same either way.
+  void set_swap_buffers(bool swap) { s_.swap_buffers_ = swap; }
+
  private:
   /// @brief a_ = M^-1 F(x, v), zero at pinned points.
   template <class X, class V>

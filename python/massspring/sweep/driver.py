@@ -27,7 +27,7 @@ _CLI_OPTIONS = {
     "ordering", "initial_guess", "newton_iterations", "newton_tolerance", "line_search",
     "gravity", "force"}
 # Parameters that change nothing massspring-simulate computes.
-_NOT_COMPUTED = {"name", "save_frames", "energy"}
+_NOT_COMPUTED = {"name", "save_frames", "energy", "min_time"}
 
 
 def command_line(run):

@@ -229,6 +229,8 @@ PARAMETERS = {
     "energy": (boolean, None, "record the total and kinetic energy after every step"),
     "budget": (positive, None, "wall-clock seconds a run may take, projected from its first "
                                "steps"),
+    "min_time": (non_negative, None, "repeat an ok run (timed only) until its stepping loops "
+                                     "add up to this many seconds"),
     # the model
     "stiffness": (positive, None, "every spring's stiffness [N/m]"),
     "stiffness_scale": (positive, None, "multiplies every spring's stiffness"),

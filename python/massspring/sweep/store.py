@@ -14,6 +14,8 @@ Layout (docs/sweeps.md):
         frames             (k,) int64: the frame numbers stored
         positions          (k, n, 3) float64 [m], velocities (k, n, 3) [m/s]
         final_positions    (n, 3) [m], final_velocities (n, 3) [m/s]: after final_step steps
+        loop_seconds       (r,) [s]: the stepping loop's time (the sum of steps/time) of each
+                           repetition, this run first (more with `min_time`)
         steps/<name>       (final_step,) per step: time [s], total_energy, kinetic_energy [J],
                            and the StepReport fields (iterations, relative_decrease, energy,
                            residual, converged, convergence, finite, refactorized,
@@ -111,7 +113,7 @@ class Store:
                 attrs[key] = result[key]
         attrs["command"] = command
         for key in ("frames", "positions", "velocities", "final_positions",
-                    "final_velocities"):
+                    "final_velocities", "loop_seconds"):
             if key in result:
                 group.create_dataset(key, data=result[key])
         if "steps" in result:

@@ -50,16 +50,18 @@ class ExplicitStepper {
     for (int i = 0; i < n_; ++i) v_.row(i) = v.row(i) + (dt_ * inverse_mass_(i)) * f_.row(i);
   }
 
-  /// @brief Ends the step (commit_step.hpp): x_ and v_ hold the candidate state.
+  /// @brief Ends the step (commit_step.hpp): x_ and v_ hold the candidate state. With
+  /// swap_buffers_ they are swapped into the system, else copied.
   StepReport commit(System& system) {
     StepReport report;
-    commit_step(system, x_, v_, dt_, report, true, /*swap_buffers=*/true);
+    commit_step(system, x_, v_, dt_, report, true, swap_buffers_);
     return report;
   }
 
   Scalar dt_ = 0;
   int n_ = 0;
   bool ready_ = false;
+  bool swap_buffers_ = true;
   std::uint64_t revision_ = 0;
   PointsType x_, v_, f_;
   Vector<Scalar> inverse_mass_;
