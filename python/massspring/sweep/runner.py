@@ -196,7 +196,8 @@ def _frames_to_save(choice, frames):
 
 def _repeat(parameters, bundle, steps, growth, energy):
     """The time [s] of one more stepping loop of the run (a new set-up: the same trajectory),
-    timed as run() times it: the sum of the step() calls' wall clock."""
+    timed as run() times it: the sum of the step() calls' wall clock; None when a step fails (a
+    loop cut short is no time for the whole run)."""
     system, solver, _, dt, _ = setup(parameters, bundle)
     solver.precompute(system, dt)
     guard = ms.DivergenceGuard(system, growth) if growth > 0 else None
@@ -210,7 +211,7 @@ def _repeat(parameters, bundle, steps, growth, energy):
             ms.total_energy(system)
             ms.kinetic_energy(system)
         if not report.ok():
-            break
+            return None
     return total
 
 
@@ -320,7 +321,10 @@ def run(parameters, bundle=None):
         min_time = parameters.get("min_time")
         if min_time is not None and result["status"] == "ok" and done > 0:
             while sum(loops) < min_time and len(loops) < 10000:
-                loops.append(_repeat(parameters, bundle, done, growth, energy))
+                seconds = _repeat(parameters, bundle, done, growth, energy)
+                if seconds is None:
+                    break
+                loops.append(seconds)
         result["loop_seconds"] = np.array(loops, dtype=np.float64)
     except Exception as e:  # noqa: BLE001: every failure of a run is recorded, not raised
         result["status"] = "failed"
