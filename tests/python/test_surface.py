@@ -132,9 +132,10 @@ def test_a_state_file_keeps_the_surface_and_self_collision(tmp_path):
 
 
 def test_a_step_reports_its_surface_contact():
-    """The ribbon_pile scene (self-collision on) at dt = 1/30: each report says how many contact
-    impulses and impact-zone points the step took, and that the contact was resolved."""
-    system = ms.load_scene(scene("ribbon_pile.json"))
+    """The two_cloths scene (self-collision on; the upper cloth lands on the lower one) at
+    dt = 1/30: each report says how many contact impulses and impact-zone points the step took,
+    and that the contact was resolved."""
+    system = ms.load_scene(scene("two_cloths.json"))
     assert system.self_collision == ms.SelfCollision()
     system.add_force(ms.Gravity([0, -9.81, 0]))
     solver = ms.FastMassSpring()

@@ -14,8 +14,10 @@ namespace massspring::contact {
 ///
 /// Two parts of the surface that are not neighbours (a point and a triangle it is not a corner of,
 /// two edges that share no point) repel when they come closer than `thickness`, and are never let
-/// closer than `thickness / 10`: no edge ever crosses a triangle. Sliding contact obeys Coulomb's
-/// law with coefficient `friction`.
+/// closer than `thickness / 10`: no edge ever crosses a triangle. Parts of one patch that stays
+/// unfolded over a step (contact/broad_phase/normal_cone_tree.hpp) are not tested: they lie side
+/// by side on one layer and cannot cross. Sliding contact obeys Coulomb's law with coefficient
+/// `friction`.
 template <class Scalar>
 struct SelfCollision {
   /// @brief The distance at which layers repel [m], > 0. At rest, folded layers lie about this

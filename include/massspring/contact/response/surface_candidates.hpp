@@ -11,12 +11,22 @@
 /// point, and pairs SurfaceElements::pair_gap() excludes (obstacle with obstacle; cloth with
 /// cloth without self-collision) are left out.
 ///
-/// Each element keeps a stored box that holds its current one: the box of its points at the start
-/// and end of the step and at the end of a next step at the same velocity (x1 + (x1 - x0)), grown
-/// by grow_of() and a further margin m. The list holds every pair whose stored boxes overlap: a
-/// superset of the candidates while every current box stays inside its stored box. full() stores
-/// every element's box, hashes them (contact/broad_phase/box_hash.hpp) and lists the pairs;
-/// without self-collision only the obstacles' elements are queried, as every pair then has one.
+/// **With self-collision** every call lists the candidates of the current motion afresh through
+/// contact/broad_phase/normal_cone_tree.hpp, built once per surface: the tree's overlapping pairs
+/// of the cloth's triangles give the cloth's pairs (each point and edge paired from one triangle
+/// that has it), and the obstacles' elements are queried against the tree's boxes. One more kind
+/// of pair is left out: a point and a triangle, or two edges, inside a patch of the cloth that
+/// cannot touch itself over the step (normal cone under 90 degrees, star-shaped boundary: see
+/// that file). Cost O(triangles + nodes visited + pairs log pairs) a call; a cloth that bends
+/// smoothly has few pairs, as its neighbours on one layer are not paired.
+///
+/// **Without self-collision** every pair has an obstacle's element, and the list is kept from
+/// step to step. Each element keeps a stored box that holds its current one: the box of its
+/// points at the start and end of the step and at the end of a next step at the same velocity
+/// (x1 + (x1 - x0)), grown by grow_of() and a further margin m. The list holds every pair whose
+/// stored boxes overlap: a superset of the candidates while every current box stays inside its
+/// stored box. full() stores every element's box, hashes them (contact/broad_phase/box_hash.hpp)
+/// and queries the obstacles' elements.
 /// refresh() follows a round that moved the end positions of the points flagged in `moved`, and
 /// next_step() a new step of the same elements (every point moved): an element whose current box
 /// has left its stored box has escaped; its stored box is taken again from its current motion, its
@@ -34,10 +44,12 @@
 /// Work arrays keep their capacity: after the first steps nothing allocates.
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <vector>
 
 #include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/contact/broad_phase/normal_cone_tree.hpp"
 #include "massspring/contact/response/surface_elements.hpp"
 
 namespace massspring::contact {
@@ -57,15 +69,23 @@ class SurfaceCandidates {
   [[nodiscard]] const std::vector<ElementPair>& pairs() const { return pairs_; }
 
   /// @brief Lists every candidate of e's motion with the cloth's boxes grown by `grow` [m]
-  /// (>= 0), storing boxes grown by a further `margin` [m] (>= 0) for refresh() and next_step().
+  /// (>= 0); without self-collision, storing boxes grown by a further `margin` [m] (>= 0) for
+  /// refresh() and next_step().
   void full(const Elements& e, Scalar grow, Scalar margin) {
     grow_ = grow;
     margin_ = margin;
     ++full_count_;
+    if (e.self && !(self_seen_ && same(e.points, points_seen_) && same(e.edges, edges_seen_) &&
+                    same(e.triangles, triangles_seen_)))
+      build_tree(e);
     points_seen_ = e.points;  // same sizes after the first steps: no allocation
     edges_seen_ = e.edges;
     triangles_seen_ = e.triangles;
     self_seen_ = e.self;
+    if (e.self) {
+      tree_full(e, grow);
+      return;
+    }
     points_.store(e, e.points, 1, grow, margin);
     triangles_.store(e, e.triangles, 3, grow, margin);
     edges_.store(e, e.edges, 2, grow, margin);
@@ -78,25 +98,7 @@ class SurfaceCandidates {
     // Each hash is built when a query first needs it (refresh() too).
     points_.hashed = triangles_.hashed = edges_.hashed = false;
     pairs_.clear();
-    if (!e.self) {
-      obstacle_pairs(e);
-      reserve_refresh(e);
-      return;
-    }
-    triangles_.hash_boxes(cell_);
-    edges_.hash_boxes(cell_);
-    // Each query's pairs share their first element: sorted by the second, the list is in order.
-    for (std::size_t v = 0; v < e.points.size(); ++v) {
-      const std::size_t first = pairs_.size();
-      triangles_.hash.query(points_.stored[v], [&](int t) { add_point_triangle(e, int(v), t); });
-      std::sort(pairs_.begin() + std::ptrdiff_t(first), pairs_.end(), before);
-    }
-    for (std::size_t a = 0; a < e.edges.size(); ++a) {
-      const std::size_t first = pairs_.size();
-      edges_.hash.query(
-          edges_.stored[a], [&](int b) { add_edge_edge(e, int(a), b); }, int(a));
-      std::sort(pairs_.begin() + std::ptrdiff_t(first), pairs_.end(), before);
-    }
+    obstacle_pairs(e);
     reserve_refresh(e);
   }
 
@@ -104,13 +106,7 @@ class SurfaceCandidates {
   /// comment): full() when e's elements or self-collision switch differ from the last full()'s,
   /// or `grow` or `margin` from its values.
   void next_step(const Elements& e, Scalar grow, Scalar margin) {
-    const auto same = [](const std::vector<Element>& a, const std::vector<Element>& b) {
-      return a.size() == b.size() &&
-             std::equal(a.begin(), a.end(), b.begin(), [](const Element& x, const Element& y) {
-               return x.p == y.p && x.owner == y.owner;
-             });
-    };
-    if (full_count_ == 0 || grow != grow_ || margin != margin_ || e.self != self_seen_ ||
+    if (full_count_ == 0 || e.self || grow != grow_ || margin != margin_ || e.self != self_seen_ ||
         !same(e.points, points_seen_) || !same(e.edges, edges_seen_) ||
         !same(e.triangles, triangles_seen_)) {
       full(e, grow, margin);
@@ -124,7 +120,7 @@ class SurfaceCandidates {
   /// changed (see the file comment); needs a full() or next_step() on the same elements since
   /// their setup.
   void refresh(const Elements& e, const std::vector<char>& moved) {
-    if (!points_.update(e, e.points, 1, moved, grow_, margin_) ||
+    if (self_seen_ || !points_.update(e, e.points, 1, moved, grow_, margin_) ||
         !triangles_.update(e, e.triangles, 3, moved, grow_, margin_) ||
         !edges_.update(e, e.edges, 2, moved, grow_, margin_)) {
       full(e, grow_, margin_);
@@ -196,11 +192,15 @@ class SurfaceCandidates {
       escaped_hash.reserve(stored.size(), hash.entries());
     }
 
+    // Stores each element's box: ahead() grown by grow_of() and the margin, or (`swept_only`)
+    // the box of the step's sweep grown by grow_of().
     void store(const Elements& e, const std::vector<Element>& elements, int count, Scalar grow,
-               Scalar margin) {
+               Scalar margin, bool swept_only = false) {
       stored.resize(elements.size());
       for (std::size_t i = 0; i < elements.size(); ++i)
-        stored[i] = ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
+        stored[i] = swept_only
+                        ? e.swept(elements[i], count, e.grow_of(elements[i], grow))
+                        : ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
       escaped.assign(elements.size(), 0);
       escaped_ids.clear();
       escaped_hashed = false;
@@ -297,6 +297,122 @@ class SurfaceCandidates {
     std::sort(pairs_.begin(), pairs_.end(), before);
   }
 
+  static bool same(const std::vector<Element>& a, const std::vector<Element>& b) {
+    return a.size() == b.size() &&
+           std::equal(a.begin(), a.end(), b.begin(), [](const Element& x, const Element& y) {
+             return x.p == y.p && x.owner == y.owner;
+           });
+  }
+
+  // The tree of the cloth's triangles (the first elements of e.triangles, owner -1) and which
+  // triangle lists each cloth point and edge: the first that has it (-1: on no triangle).
+  void build_tree(const Elements& e) {
+    std::size_t cloth = 0;
+    while (cloth < e.triangles.size() && e.triangles[cloth].owner < 0) ++cloth;
+    tree_triangles_.resize(cloth);
+    for (std::size_t t = 0; t < cloth; ++t) tree_triangles_[t] = e.triangles[t].p;
+    point_of_.assign(std::size_t(e.x0.rows()), -1);
+    for (std::size_t v = 0; v < e.points.size(); ++v)
+      if (e.points[v].owner < 0) point_of_[std::size_t(e.points[v].p[0])] = int(v);
+    point_owner_.assign(e.points.size(), -1);
+    edge_owner_.assign(e.edges.size(), -1);
+    edge_keys_.clear();
+    for (std::size_t a = 0; a < e.edges.size(); ++a)
+      if (e.edges[a].owner < 0)
+        edge_keys_.push_back({std::min(e.edges[a].p[0], e.edges[a].p[1]),
+                              std::max(e.edges[a].p[0], e.edges[a].p[1]), int(a)});
+    std::sort(edge_keys_.begin(), edge_keys_.end());
+    triangle_edges_.resize(cloth);
+    for (std::size_t t = 0; t < cloth; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int i = tree_triangles_[t][std::size_t(k)];
+        const int j = tree_triangles_[t][std::size_t((k + 1) % 3)];
+        const int v = point_of_[std::size_t(i)];
+        if (v >= 0 && point_owner_[std::size_t(v)] < 0) point_owner_[std::size_t(v)] = int(t);
+        const std::array<int, 3> key = {std::min(i, j), std::max(i, j), -1};
+        const auto it = std::lower_bound(edge_keys_.begin(), edge_keys_.end(), key);
+        const int a =
+            it != edge_keys_.end() && (*it)[0] == key[0] && (*it)[1] == key[1] ? (*it)[2] : -1;
+        triangle_edges_[t][std::size_t(k)] = a;
+        if (a >= 0 && edge_owner_[std::size_t(a)] < 0) edge_owner_[std::size_t(a)] = int(t);
+      }
+    tree_.build(e.x0, tree_triangles_);
+  }
+
+  // full() with self-collision through the tree: the boxes of the step's sweeps (no margin:
+  // every refresh() and next_step() comes back here); the obstacles' elements queried against
+  // the tree's triangles, the cloth's pairs from the tree's pairs of triangles. A cloth point is
+  // paired from the triangle that lists it, an edge from its triangle likewise, so each pair comes
+  // from one pair of triangles: the one holding both elements' boxes (a triangle's box holds its
+  // corners' and sides'). A pair the tree skips lies in a patch that cannot touch itself over the
+  // step.
+  void tree_full(const Elements& e, Scalar grow) {
+    points_.store(e, e.points, 1, grow, 0, true);
+    triangles_.store(e, e.triangles, 3, grow, 0, true);
+    edges_.store(e, e.edges, 2, grow, 0, true);
+    pairs_.clear();
+    tree_.refit(e.x0, e.x1, grow);
+    // The obstacles' elements, and any cloth point or edge on no triangle, against the cloth's
+    // triangles and their points and edges, through the tree's boxes; those among themselves
+    // one by one.
+    for (std::size_t v = 0; v < e.points.size(); ++v)
+      if (e.points[v].owner >= 0 || point_owner_[v] < 0) {
+        tree_.query(points_.stored[v], [&](int t) {
+          if (points_.stored[v].overlaps(triangles_.stored[std::size_t(t)]))
+            add_point_triangle(e, int(v), t);
+        });
+        if (e.points[v].owner < 0)
+          for (std::size_t s = tree_triangles_.size(); s < e.triangles.size(); ++s)
+            if (points_.stored[v].overlaps(triangles_.stored[s]))
+              add_point_triangle(e, int(v), int(s));
+      }
+    for (std::size_t s = 0; s < e.triangles.size(); ++s)
+      if (e.triangles[s].owner >= 0)
+        tree_.query(triangles_.stored[s], [&](int t) {
+          for (int i : tree_triangles_[std::size_t(t)]) {
+            const int v = point_of_[std::size_t(i)];
+            if (v >= 0 && point_owner_[std::size_t(v)] == t &&
+                points_.stored[std::size_t(v)].overlaps(triangles_.stored[s]))
+              add_point_triangle(e, v, int(s));
+          }
+        });
+    loose_edges_.clear();
+    for (std::size_t a = 0; a < e.edges.size(); ++a)
+      if (e.edges[a].owner >= 0 || edge_owner_[a] < 0) {
+        for (int b : loose_edges_)
+          if (edges_.stored[a].overlaps(edges_.stored[std::size_t(b)])) add_edge_edge(e, int(a), b);
+        loose_edges_.push_back(int(a));
+        tree_.query(edges_.stored[a], [&](int t) {
+          for (int b : triangle_edges_[std::size_t(t)])
+            if (b >= 0 && edge_owner_[std::size_t(b)] == t &&
+                edges_.stored[a].overlaps(edges_.stored[std::size_t(b)]))
+              add_edge_edge(e, int(a), b);
+        });
+      }
+    tree_.self_pairs(e.x0, e.x1, [&](int s, int t) {
+      corners_against(e, s, t);
+      corners_against(e, t, s);
+      for (int a : triangle_edges_[std::size_t(s)]) {
+        if (a < 0 || edge_owner_[std::size_t(a)] != s) continue;
+        for (int b : triangle_edges_[std::size_t(t)])
+          if (b >= 0 && edge_owner_[std::size_t(b)] == t &&
+              edges_.stored[std::size_t(a)].overlaps(edges_.stored[std::size_t(b)]))
+            add_edge_edge(e, a, b);
+      }
+    });
+    std::sort(pairs_.begin(), pairs_.end(), before);
+    reserve_refresh(e);
+  }
+  // The corners triangle s lists, against triangle t.
+  void corners_against(const Elements& e, int s, int t) {
+    for (int i : tree_triangles_[std::size_t(s)]) {
+      const int v = point_of_[std::size_t(i)];
+      if (v >= 0 && point_owner_[std::size_t(v)] == s &&
+          points_.stored[std::size_t(v)].overlaps(triangles_.stored[std::size_t(t)]))
+        add_point_triangle(e, v, t);
+    }
+  }
+
   static bool inside(const Box& b, const Box& outer) {
     return (outer.lo.array() <= b.lo.array()).all() && (b.hi.array() <= outer.hi.array()).all();
   }
@@ -325,6 +441,10 @@ class SurfaceCandidates {
   std::vector<Element> points_seen_, edges_seen_, triangles_seen_;  // the last full()'s
   bool self_seen_ = false;
   std::vector<char> all_moved_;
+  // Self-collision through the tree (build_tree()).
+  NormalConeTree<Scalar> tree_;
+  std::vector<std::array<int, 3>> tree_triangles_, triangle_edges_, edge_keys_;
+  std::vector<int> point_of_, point_owner_, edge_owner_, loose_edges_;
 };
 
 }  // namespace massspring::contact

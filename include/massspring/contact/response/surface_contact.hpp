@@ -13,8 +13,9 @@
 /// runs first.
 ///
 /// Pairs: a point and a triangle it is not a corner of, two edges that share no point. Between
-/// parts of the cloth only when self-collision is on (contact/self_collision.hpp); between the
-/// cloth and an obstacle always. Positions move on straight lines over the step,
+/// parts of the cloth only when self-collision is on (contact/self_collision.hpp), and not inside
+/// a patch that cannot touch itself over the step (contact/broad_phase/normal_cone_tree.hpp: its
+/// parts lie side by side on one layer); between the cloth and an obstacle always. Positions move on straight lines over the step,
 /// x(t) = x_start + t (x_end - x_start), t in [0, 1]. The pipeline (Bridson, Fedkiw and Anderson
 /// 2002, "Robust treatment of collisions, contact and friction for cloth animation", sections
 /// 7.2-7.4; Harmon et al. 2008, "Robust treatment of simultaneous collisions"):
@@ -43,9 +44,9 @@
 /// inelastic normal impulse with friction no larger than Coulomb's never adds kinetic energy.
 /// Velocities change by the displacement change over dt. Pinned points (w = 0) never move.
 ///
-/// Cost: one spatial hash of the swept bounding boxes per step, then the narrow phase of each
-/// candidate; later rounds query again only the elements whose points moved
-/// (contact/response/surface_candidates.hpp). The work arrays keep their capacity, so after the
+/// Cost: the broad phase (contact/response/surface_candidates.hpp: with self-collision a
+/// hierarchy of the cloth's triangles refitted each round, without it a spatial hash of the
+/// obstacles' pairs kept from step to step), then the narrow phase of each candidate. The work arrays keep their capacity, so after the
 /// first steps nothing allocates.
 
 #include <Eigen/Core>

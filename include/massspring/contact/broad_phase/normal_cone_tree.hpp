@@ -1,0 +1,446 @@
+#pragma once
+/// @file
+/// @brief NormalConeTree: a bounding-volume hierarchy over a triangle surface that lists the pairs
+/// of triangles whose swept boxes overlap, skipping whole patches that cannot touch themselves
+/// over the step (the broad phase of self-collision, contact/response/surface_candidates.hpp).
+///
+/// The tree splits the triangles in two, recursively, at the middle of the longest side of their
+/// boxes' centres (the median when that leaves fewer than an eighth on one side, so the depth
+/// stays O(log m)); a leaf holds one triangle. Each node is a patch of the surface. Per step,
+/// refit() gives each node the box of its triangles' straight-line sweeps x0 -> x1, grown by g,
+/// and a cone of directions that holds every normal of its triangles over the whole step.
+///
+/// **Why a patch may be skipped** (Volino and Magnenat-Thalmann 1994, "Efficient self-collision
+/// detection on smoothly discretized surface animations using geometrical shape regularity";
+/// over a time step, Tang et al. 2009, "Interactive continuous collision detection between
+/// deformable models using connectivity-based culling"; the contour test, Schvartzman, Perez and
+/// Otaduy 2010, "Star-contours for efficient hierarchical self-collision detection"). With the
+/// corners moving linearly, a triangle's normal n(t) = (b - a) x (c - a) is quadratic in t:
+/// n(t) = (1-t)^2 B0 + 2 t (1-t) B1 + t^2 B2 with B0 = n(0), B2 = n(1),
+/// B1 = ((b0 - a0) x (c1 - a1) + (b1 - a1) x (c0 - a0)) / 2, a combination of B0, B1, B2 with
+/// non-negative weights. If a unit axis a has a . Bk > 0 for every triangle of a patch, each
+/// triangle keeps its orientation when projected along a, at every t in [0, 1]. If moreover the
+/// patch is a topological disk whose boundary loop, projected, stays star-shaped about the
+/// centroid c(t) of one of its triangles (a . ((p(t) - c(t)) x (q(t) - c(t))) > 0 for each
+/// boundary edge p -> q, again a
+/// quadratic checked on its Bernstein coefficients), the projection is one-to-one at every t, so
+/// no two points of the patch ever meet: no point crosses a triangle and no edge crosses an edge
+/// of the patch during the step. Such a patch is not searched inside. The thresholds (cosine
+/// above 1e-6, star coefficients above 1e-9 of their scale) keep rounding on the safe side.
+///
+/// Cost: build (once per surface) O(m log m) where a node's loop comes from gluing its
+/// children's, up to O(m log^2 m) where it is traced from the triangles (a tree split in a
+/// crumpled shape); refit O(m); a search O(nodes visited), which for a cloth that bends smoothly
+/// grows with the length of the borders between its skipped patches, not with its area.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/types.hpp"
+
+namespace massspring::contact {
+
+/// @brief The tree of one triangle surface (see the file comment).
+template <class Scalar>
+class NormalConeTree {
+ public:
+  using V3 = Vector3<Scalar>;
+  using Box = AlignedBox3<Scalar>;
+  using Triangle = std::array<int, 3>;
+
+  /// @brief Builds the tree of `triangles` (corner indices into x's rows, consistently oriented
+  /// for patches to be skipped), split by their positions in x.
+  void build(const Points<Scalar>& x, const std::vector<Triangle>& triangles) {
+    triangles_ = triangles;
+    nodes_.clear();
+    loops_.clear();
+    const int m = int(triangles_.size());
+    order_.resize(std::size_t(m));
+    centres_.resize(std::size_t(m));
+    for (int t = 0; t < m; ++t) {
+      order_[std::size_t(t)] = t;
+      const Triangle& c = triangles_[std::size_t(t)];
+      const V3 a = row(x, c[0]), b = row(x, c[1]), d = row(x, c[2]);
+      centres_[std::size_t(t)] = (a.cwiseMin(b).cwiseMin(d) + a.cwiseMax(b).cwiseMax(d)) / 2;
+    }
+    nodes_.reserve(std::size_t(std::max(0, 2 * m - 1)));
+    loops_.reserve(std::size_t(8 * m));
+    if (m > 0) split(x, 0, m);
+  }
+
+  /// @brief The number of nodes (2 m - 1 for m > 0 triangles).
+  [[nodiscard]] std::size_t size() const { return nodes_.size(); }
+
+  /// @brief Each node's box over x0 -> x1 grown by g [m], and its normal cone.
+  void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g) {
+    for (std::size_t k = nodes_.size(); k-- > 0;) {
+      Node& n = nodes_[k];
+      if (n.left < 0) {
+        leaf(x0, x1, g, n);
+        continue;
+      }
+      const Node& l = nodes_[std::size_t(n.left)];
+      const Node& r = nodes_[std::size_t(n.right)];
+      n.box = {l.box.lo.cwiseMin(r.box.lo), l.box.hi.cwiseMax(r.box.hi)};
+      merge(l, r, n);
+    }
+  }
+
+  /// @brief Calls visit(s, t) once for each pair of distinct triangles (indices into the
+  /// triangles given to build()) whose boxes from the last refit() overlap, except pairs inside a
+  /// patch that cannot touch itself over x0 -> x1 (the motion given to refit()).
+  template <class Visit>
+  void self_pairs(const Points<Scalar>& x0, const Points<Scalar>& x1, Visit&& visit) const {
+    if (!nodes_.empty()) self(x0, x1, 0, visit);
+  }
+
+  /// @brief The triangles of node k's patch (node 0: all of them).
+  [[nodiscard]] std::vector<int> patch(std::size_t k) const {
+    return {order_.begin() + nodes_[k].begin, order_.begin() + nodes_[k].end};
+  }
+
+  /// @brief Calls visit(t) for each triangle t whose box from the last refit() overlaps b.
+  template <class Visit>
+  void query(const Box& b, Visit&& visit) const {
+    if (!nodes_.empty()) query(0, b, visit);
+  }
+
+  /// @brief Whether the patch of node k (0: the whole surface) passes the test of the file
+  /// comment for the motion given to the last refit().
+  [[nodiscard]] bool cannot_touch_itself(const Points<Scalar>& x0, const Points<Scalar>& x1,
+                                         std::size_t k) const {
+    return star(x0, x1, nodes_[k]);
+  }
+
+ private:
+  struct Node {
+    int left = -1, right = -1;         // children, or -1 for a leaf
+    int begin = 0, end = 0;            // its triangles: order_[begin, end)
+    int loop_begin = 0, loop_end = 0;  // boundary loop in loops_
+    int centre = -1;  // the triangle whose centroid is the star's centre; -1: not a disk
+    Box box;
+    V3 axis = V3::Zero();
+    Scalar cos = -1, sin = 0;  // half-angle of the cone; cos <= 0: no cone
+  };
+
+  static V3 row(const Points<Scalar>& x, int i) { return x.row(i).transpose(); }
+
+  // Splits order_[b, e) into a node and its subtrees (preorder: a parent before its children).
+  int split(const Points<Scalar>& x, int b, int e) {
+    const int id = int(nodes_.size());
+    nodes_.emplace_back();
+    nodes_[std::size_t(id)].begin = b;
+    nodes_[std::size_t(id)].end = e;
+    if (e - b > 1) {
+      V3 lo = centres_[std::size_t(order_[std::size_t(b)])], hi = lo;
+      for (int k = b; k < e; ++k) {
+        lo = lo.cwiseMin(centres_[std::size_t(order_[std::size_t(k)])]);
+        hi = hi.cwiseMax(centres_[std::size_t(order_[std::size_t(k)])]);
+      }
+      int axis = 0;
+      (hi - lo).maxCoeff(&axis);
+      const Scalar middle = (lo(axis) + hi(axis)) / 2;
+      const auto first = order_.begin() + b, last = order_.begin() + e;
+      int m = int(std::partition(first, last,
+                                 [&](int t) { return centres_[std::size_t(t)](axis) < middle; }) -
+                  order_.begin());
+      if (std::min(m - b, e - m) < std::max(1, (e - b) / 8)) {
+        m = b + (e - b) / 2;
+        std::nth_element(first, order_.begin() + m, last, [&](int s, int t) {
+          return centres_[std::size_t(s)](axis) < centres_[std::size_t(t)](axis);
+        });
+      }
+      const int left = split(x, b, m);
+      const int right = split(x, m, e);
+      nodes_[std::size_t(id)].left = left;
+      nodes_[std::size_t(id)].right = right;
+    }
+    contour(x, nodes_[std::size_t(id)]);
+    return id;
+  }
+
+  // The node's boundary loop and star centre, when its patch is a topological disk: a triangle
+  // with three distinct corners (loop a, b, c); two disks glued along one arc of their loops,
+  // the left loop running s -> e along it and the right one e -> s, sharing no other vertex (then
+  // the loop is the left one's e -> s and the right one's s -> e; cost O(the two loops)); or,
+  // when the children are not such disks (a tree split in a folded shape), a patch that passes
+  // trace() (cost O(triangles log triangles)).
+  void contour(const Points<Scalar>& x, Node& n) {
+    const int begin = int(loops_.size());
+    if (n.left < 0) {
+      const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
+      if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) return;
+      loops_.insert(loops_.end(), c.begin(), c.end());
+    } else if (!glue(nodes_[std::size_t(n.left)], nodes_[std::size_t(n.right)]) && !trace(n)) {
+      return;
+    }
+    n.loop_begin = begin;
+    n.loop_end = int(loops_.size());
+    // The centre: the centroid of the patch's triangle nearest the mean of the loop.
+    V3 mean = V3::Zero();
+    for (int k = begin; k < n.loop_end; ++k) mean += row(x, loops_[std::size_t(k)]);
+    mean /= Scalar(n.loop_end - begin);
+    Scalar best = -1;
+    for (int k = n.begin; k < n.end; ++k) {
+      const Triangle& c = triangles_[std::size_t(order_[std::size_t(k)])];
+      const Scalar d = ((row(x, c[0]) + row(x, c[1]) + row(x, c[2])) / 3 - mean).squaredNorm();
+      if (best < 0 || d < best) {
+        best = d;
+        n.centre = order_[std::size_t(k)];
+      }
+    }
+  }
+
+  // Appends the boundary loop of node n's triangles to loops_ when they form a consistently
+  // oriented disk: each directed edge once, the boundary edges (whose reverse is not in the
+  // patch) one closed loop through distinct vertices, V - E + F = 1, the vertices connected.
+  bool trace(const Node& n) {
+    directed_.clear();
+    vertices_.clear();
+    for (int k = n.begin; k < n.end; ++k) {
+      const Triangle& c = triangles_[std::size_t(order_[std::size_t(k)])];
+      for (int j = 0; j < 3; ++j) {
+        directed_.emplace_back(c[std::size_t(j)], c[std::size_t((j + 1) % 3)]);
+        vertices_.push_back(c[std::size_t(j)]);
+      }
+    }
+    std::sort(directed_.begin(), directed_.end());
+    std::sort(vertices_.begin(), vertices_.end());
+    vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+    if (std::adjacent_find(directed_.begin(), directed_.end()) != directed_.end()) return false;
+    boundary_.clear();
+    for (const auto& d : directed_)
+      if (!std::binary_search(directed_.begin(), directed_.end(),
+                              std::make_pair(d.second, d.first)))
+        boundary_.push_back(d);  // sorted by start, as directed_ is
+    const std::size_t edges = (directed_.size() + boundary_.size()) / 2;
+    const long chi = long(vertices_.size()) - long(edges) + long(n.end - n.begin);
+    if (boundary_.empty() || chi != 1) return false;
+    for (std::size_t k = 1; k < boundary_.size(); ++k)
+      if (boundary_[k].first == boundary_[k - 1].first) return false;  // a vertex passed twice
+    // Connected: union-find over the vertices along the edges.
+    parent_.resize(vertices_.size());
+    for (std::size_t k = 0; k < parent_.size(); ++k) parent_[k] = int(k);
+    const auto find = [&](int k) {
+      while (parent_[std::size_t(k)] != k) k = parent_[std::size_t(k)];
+      return k;
+    };
+    const auto index = [&](int v) {
+      return int(std::lower_bound(vertices_.begin(), vertices_.end(), v) - vertices_.begin());
+    };
+    std::size_t groups = vertices_.size();
+    for (const auto& d : directed_) {
+      const int a = find(index(d.first)), b = find(index(d.second));
+      if (a != b) {
+        parent_[std::size_t(a)] = b;
+        --groups;
+      }
+    }
+    if (groups != 1) return false;
+    // Follow the loop; it must take every boundary edge.
+    const std::size_t begin = loops_.size();
+    int v = boundary_.front().first;
+    for (std::size_t step = 0; step < boundary_.size(); ++step) {
+      loops_.push_back(v);
+      const auto it = std::lower_bound(boundary_.begin(), boundary_.end(), std::make_pair(v, -1));
+      if (it == boundary_.end() || it->first != v) break;
+      v = it->second;
+    }
+    if (v != boundary_.front().first || loops_.size() - begin != boundary_.size()) {
+      loops_.resize(begin);
+      return false;
+    }
+    return true;
+  }
+
+  // Appends the loop of the union of disks l and r to loops_ (see contour()); false when they do
+  // not meet along exactly one arc.
+  bool glue(const Node& l, const Node& r) {
+    if (l.centre < 0 || r.centre < 0) return false;
+    const int p = l.loop_end - l.loop_begin, q = r.loop_end - r.loop_begin;
+    const auto lv = [&](int i) { return loops_[std::size_t(l.loop_begin + (i % p))]; };
+    const auto rv = [&](int j) { return loops_[std::size_t(r.loop_begin + (j % q))]; };
+    int top = 0;
+    for (int j = 0; j < q; ++j) top = std::max(top, rv(j) + 1);
+    if (int(position_.size()) < top) position_.resize(std::size_t(top), -1);
+    for (int j = 0; j < q; ++j) position_[std::size_t(rv(j))] = j;
+    const auto at = [&](int v) { return v < top ? position_[std::size_t(v)] : -1; };
+    // Edge i of l (lv(i) -> lv(i + 1)) is shared when r has lv(i + 1) -> lv(i).
+    const auto shared = [&](int i) {
+      const int j = at(lv(i + 1));
+      return j >= 0 && at(lv(i)) >= 0 && rv(j + 1) == lv(i);
+    };
+    int count = 0, starts = 0, first = -1, common = 0;
+    for (int i = 0; i < p; ++i) {
+      const bool here = shared(i);
+      count += here;
+      if (here && !shared(i + p - 1)) {
+        ++starts;
+        first = i;
+      }
+      common += at(lv(i)) >= 0;
+    }
+    bool ok = starts == 1 && count < p && count < q && common == count + 1;
+    if (ok) {
+      const int s = lv(first), e = lv(first + count);
+      const int js = at(s);
+      ok = rv(at(e) + count) == s;
+      for (int i = first + count; ok && i <= first + p; ++i) loops_.push_back(lv(i));  // e .. s
+      for (int m = 1; ok && m < q - count; ++m) loops_.push_back(rv(js + m));  // after s .. e
+    }
+    for (int j = 0; j < q; ++j) position_[std::size_t(rv(j))] = -1;
+    return ok;
+  }
+
+  // A leaf: its triangle's swept box and the cone about its Bernstein normals' mean direction.
+  void leaf(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n) const {
+    const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
+    const V3 a0 = row(x0, c[0]), b0 = row(x0, c[1]), c0 = row(x0, c[2]);
+    const V3 a1 = row(x1, c[0]), b1 = row(x1, c[1]), c1 = row(x1, c[2]);
+    n.box = {a0.cwiseMin(b0).cwiseMin(c0).cwiseMin(a1).cwiseMin(b1).cwiseMin(c1),
+             a0.cwiseMax(b0).cwiseMax(c0).cwiseMax(a1).cwiseMax(b1).cwiseMax(c1)};
+    n.box.lo.array() -= g;
+    n.box.hi.array() += g;
+    const V3 e0 = b0 - a0, f0 = c0 - a0, e1 = b1 - a1, f1 = c1 - a1;
+    const std::array<V3, 3> bern = {e0.cross(f0), (e0.cross(f1) + e1.cross(f0)) / 2, e1.cross(f1)};
+    n.cos = -1;
+    std::array<Scalar, 3> len;
+    V3 axis = V3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      len[std::size_t(k)] = bern[std::size_t(k)].norm();
+      if (!(len[std::size_t(k)] > 0)) return;
+      axis += bern[std::size_t(k)] / len[std::size_t(k)];
+    }
+    const Scalar norm = axis.norm();
+    if (!(norm > 0)) return;
+    axis /= norm;
+    Scalar cos = 1;
+    for (int k = 0; k < 3; ++k)
+      cos = std::min(cos, axis.dot(bern[std::size_t(k)]) / len[std::size_t(k)]);
+    set_cone(n, axis, cos);
+  }
+
+  // The smallest cone that holds both children's: its axis on the arc from the left axis a1 to
+  // the right one a2 (angle phi apart), turned by beta = (phi + t2 - t1) / 2 from a1 (t1, t2 the
+  // half-angles), found from cosines and sines alone (sums and half angles); one child's cone
+  // when it holds the other's. Whatever rounding does to that axis, the half-angle is then
+  // bounded as the larger of angle(axis, child axis) + child half-angle, by
+  // cos(u + v) = cos u cos v - sin u sin v. No cone when a child has none or the angle reaches
+  // 90 degrees.
+  static void merge(const Node& l, const Node& r, Node& n) {
+    n.cos = -1;
+    if (!(l.cos > 0 && r.cos > 0)) return;
+    const Scalar cphi = l.axis.dot(r.axis), sphi = l.axis.cross(r.axis).norm();
+    // cos and sin of phi + t2 - t1 and of phi + t1 - t2 (whether a cone holds the other).
+    const Scalar c21 =
+        cphi * (r.cos * l.cos + r.sin * l.sin) - sphi * (r.sin * l.cos - r.cos * l.sin);
+    const Scalar s21 =
+        sphi * (r.cos * l.cos + r.sin * l.sin) + cphi * (r.sin * l.cos - r.cos * l.sin);
+    const Scalar s12 =
+        sphi * (l.cos * r.cos + l.sin * r.sin) + cphi * (l.sin * r.cos - l.cos * r.sin);
+    V3 axis;
+    if (!(sphi > 0) || s21 <= 0) {
+      axis = l.axis;  // phi + t2 <= t1 (or the axes coincide): the left cone holds both
+    } else if (s12 <= 0) {
+      axis = r.axis;
+    } else {
+      // beta = (phi + t2 - t1) / 2 in (0, phi): half-angle formulas, cos beta < 0 past 90 degrees.
+      const Scalar sb = std::sqrt(std::max(Scalar(0), (1 - c21) / 2));
+      const Scalar cb = std::sqrt(std::max(Scalar(0), (1 + c21) / 2));
+      const V3 u = (r.axis - cphi * l.axis) / sphi;
+      axis = cb * l.axis + sb * u;
+    }
+    const Scalar norm = axis.norm();
+    if (!(norm > 0)) return;
+    axis /= norm;
+    Scalar cos = 1;
+    for (const Node* child : {&l, &r}) {
+      const Scalar c = axis.dot(child->axis), s = axis.cross(child->axis).norm();
+      cos = std::min(cos, c * child->cos - s * child->sin);
+    }
+    set_cone(n, axis, cos);
+  }
+
+  static void set_cone(Node& n, const V3& axis, Scalar cos) {
+    if (!(cos > Scalar(1e-6))) return;
+    n.axis = axis;
+    n.cos = cos;
+    n.sin = std::sqrt(std::max(Scalar(0), 1 - cos * cos));
+  }
+
+  // The test of the file comment: a cone under 90 degrees and a star-shaped boundary loop.
+  bool star(const Points<Scalar>& x0, const Points<Scalar>& x1, const Node& n) const {
+    if (!(n.cos > 0) || n.centre < 0) return false;
+    const Triangle& t = triangles_[std::size_t(n.centre)];
+    const V3 c0 = (row(x0, t[0]) + row(x0, t[1]) + row(x0, t[2])) / 3;
+    const V3 c1 = (row(x1, t[0]) + row(x1, t[1]) + row(x1, t[2])) / 3;
+    const V3& a = n.axis;
+    for (int k = n.loop_begin; k < n.loop_end; ++k) {
+      const int p = loops_[std::size_t(k)];
+      const int q = loops_[std::size_t(k + 1 < n.loop_end ? k + 1 : n.loop_begin)];
+      const V3 p0 = row(x0, p) - c0, q0 = row(x0, q) - c0;
+      const V3 p1 = row(x1, p) - c1, q1 = row(x1, q) - c1;
+      const Scalar scale = Scalar(1e-9) * (p0.norm() + p1.norm()) * (q0.norm() + q1.norm());
+      if (!(a.dot(p0.cross(q0)) > scale && a.dot(p1.cross(q1)) > scale &&
+            a.dot(p0.cross(q1) + p1.cross(q0)) > 2 * scale))
+        return false;
+    }
+    return true;
+  }
+
+  template <class Visit>
+  void self(const Points<Scalar>& x0, const Points<Scalar>& x1, int k, Visit& visit) const {
+    const Node& n = nodes_[std::size_t(k)];
+    if (n.left < 0 || star(x0, x1, n)) return;
+    self(x0, x1, n.left, visit);
+    self(x0, x1, n.right, visit);
+    pair(n.left, n.right, visit);
+  }
+
+  template <class Visit>
+  void query(int k, const Box& b, Visit& visit) const {
+    const Node& n = nodes_[std::size_t(k)];
+    if (!n.box.overlaps(b)) return;
+    if (n.left < 0) {
+      visit(order_[std::size_t(n.begin)]);
+      return;
+    }
+    query(n.left, b, visit);
+    query(n.right, b, visit);
+  }
+
+  template <class Visit>
+  void pair(int i, int j, Visit& visit) const {
+    const Node& a = nodes_[std::size_t(i)];
+    const Node& b = nodes_[std::size_t(j)];
+    if (!a.box.overlaps(b.box)) return;
+    if (a.left < 0 && b.left < 0) {
+      visit(order_[std::size_t(a.begin)], order_[std::size_t(b.begin)]);
+      return;
+    }
+    if (b.left < 0 || (a.left >= 0 && a.end - a.begin >= b.end - b.begin)) {
+      pair(a.left, j, visit);
+      pair(a.right, j, visit);
+    } else {
+      pair(i, b.left, visit);
+      pair(i, b.right, visit);
+    }
+  }
+
+  std::vector<Triangle> triangles_;
+  std::vector<Node> nodes_;
+  std::vector<int> order_, loops_;
+  std::vector<V3> centres_;
+  // build()'s scratch.
+  std::vector<int> position_;  // a vertex's place in a loop, or -1
+  std::vector<std::pair<int, int>> directed_, boundary_;
+  std::vector<int> vertices_, parent_;
+};
+
+}  // namespace massspring::contact
