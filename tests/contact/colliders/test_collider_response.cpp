@@ -197,32 +197,35 @@ namespace {
 void check_rest(Kind kind, bool frictionless = true) {
   const std::string integrator = name(kind);
   CAPTURE(integrator);
-  const double dt = 1e-3;
-  for (const bool tilted : {false, true}) {
-    if (!tilted && !frictionless) continue;
-    CAPTURE(tilted);
-    const V3 n = tilted ? V3(V3(1, 2, -0.5).normalized()) : V3(0, 1, 0);
-    const V3 p = tilted ? V3(0.2, -0.1, 0.4) : V3(-1, 0.25, 2);
-    const V3 t = n.cross(V3(0, 0, 1)).normalized();
-    const V3 x0 = p + 0.7 * t + 0.3 * n.cross(t);  // on the plane
-    System s = particle(x0);
-    add_gravity(s, -kG * n);
-    add(s, Collider::plane(p, 3 * n)).set_friction(tilted ? 0.5 : 0.0);
-    auto stepper = make_stepper(kind);
-    stepper->precompute(s, dt);
-    double drift = 0, speed = 0;
-    run(*stepper, s, 10000, [&](int) {
-      drift = std::max(drift, (s.positions().row(0).transpose() - x0).norm());
-      speed = std::max(speed, s.velocities().norm());
-    });
-    CHECK(drift <= 1e-12);
-    CHECK(speed <= 1e-12);
-  }
+  for (const double dt : {1e-3, 1.0 / 30})
+    for (const bool tilted : {false, true}) {
+      if (!tilted && !frictionless) continue;
+      CAPTURE(dt);
+      CAPTURE(tilted);
+      const V3 n = tilted ? V3(V3(1, 2, -0.5).normalized()) : V3(0, 1, 0);
+      const V3 p = tilted ? V3(0.2, -0.1, 0.4) : V3(-1, 0.25, 2);
+      const V3 t = n.cross(V3(0, 0, 1)).normalized();
+      const V3 x0 = p + 0.7 * t + 0.3 * n.cross(t);  // on the plane
+      System s = particle(x0);
+      add_gravity(s, -kG * n);
+      add(s, Collider::plane(p, 3 * n)).set_friction(tilted ? 0.5 : 0.0);
+      auto stepper = make_stepper(kind);
+      stepper->precompute(s, dt);
+      double drift = 0, speed = 0;
+      run(*stepper, s, 10000, [&](int) {
+        drift = std::max(drift, (s.positions().row(0).transpose() - x0).norm());
+        speed = std::max(speed, s.velocities().norm());
+      });
+      CHECK(drift <= 1e-12);
+      CHECK(speed <= 1e-12);
+    }
 }
 
 }  // namespace
 
-TEST_CASE("colliders: a particle at rest on a plane stays there to 1e-12 for 10^4 steps") {
+TEST_CASE(
+    "colliders: a particle at rest on a plane stays there to 1e-12 for 10^4 steps, dt = 1 ms and "
+    "1/30 s") {
   for (const Kind kind : {Kind::ForwardEuler, Kind::SymplecticEuler, Kind::RK4,
                           Kind::BackwardEulerLinearized, Kind::BackwardEulerNewton})
     check_rest(kind);
@@ -236,16 +239,11 @@ TEST_CASE("colliders: a particle at rest on a plane with friction stays there (F
     check_rest(kind, false);
 }
 
-// Skipped: FastMassSpring does not keep a free particle at rest, collider or not. Its velocity is
-// (x' - x) / h, and the global solve x' = Q^-1 (M / h^2 (x + h v) + ...) rounds x' with the same
-// bias every step (the same numbers), so v gains about eps |x| / h (5.5e-14 m/s at |x| = 0.3 m,
-// h = 1 ms) each step and the position drifts quadratically, on the frictionless plane here as
-// for a particle with no collider and no gravity at all. BackwardEuler avoids this by
-// accumulating x' - (x + h v) (its `moved_`). A limit of integrators/local_global, not of the
-// colliders; with friction the plane removes the tangential velocity and the particle stays put
-// (the test above).
-TEST_CASE("colliders: a particle at rest on a frictionless plane stays there (FastMassSpring)" *
-          doctest::skip()) {
+// FastMassSpring solves for the displacement from the step's start (inertial_term.hpp): the
+// tangential displacement of a particle at rest on a frictionless plane is 0 exactly, where
+// solving for the position rounded it by about eps |x| every step, the same way each time (the
+// velocity then grew by eps |x| / h per step).
+TEST_CASE("colliders: a particle at rest on a frictionless plane stays there (FastMassSpring)") {
   for (const Kind kind :
        {Kind::FastMassSpring, Kind::FastMassSpringChebyshev, Kind::FastMassSpringAnderson})
     check_rest(kind);
@@ -371,10 +369,9 @@ void check_rebound(Kind kind) {
       CAPTURE(y_max);
       CAPTURE(bound);
       CHECK(std::abs(y_max - e * e * H) <= bound);
-      // No sideways motion (FastMassSpring's velocity (x' - x) / h drifts by rounding: see the
-      // skipped rest test; 1e-9 m over these steps).
-      CHECK(std::abs(s.positions()(0, 0) - 0.1) <= 1e-9);
-      CHECK(std::abs(s.positions()(0, 2) + 0.2) <= 1e-9);
+      // No sideways motion.
+      CHECK(std::abs(s.positions()(0, 0) - 0.1) <= 1e-12);
+      CHECK(std::abs(s.positions()(0, 2) + 0.2) <= 1e-12);
     }
   }
 }

@@ -7,7 +7,8 @@
 //   whatever alpha (the dual variable removes a penalty's error);
 // - a cloth dropped on a ball over a floor never has a point inside the ball at a step end, and
 //   rests on it with little stretch;
-// - a cloth dropped on a ball that turns about the vertical turns with it (friction).
+// - a cloth dropped on a ball that turns about the vertical turns with it (friction): to 5% after
+//   3 s, and after 2 s with Anderson acceleration.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -184,19 +185,9 @@ TEST_CASE(
   CHECK(strain.max <= 0.15);
 }
 
-// Dropped on the turning ball, the cloth lands flat and is carried up to speed by friction alone;
-// after 3 s its points resting on the ball move with the ball's surface to 5% on average (run to
-// convergence, 200 iterations: 1.9%; after 2 s, 2.2% converged and 6.1% in 10 iterations).
-TEST_CASE(
-    "contact in the iteration: a cloth on a ball turning at 1 rad/s turns with it after 3 s "
-    "(mu = 0.5, dt = 1/30)") {
-  const double omega = 1;
-  System s = cloth_over_ball(41, 0.5, omega);
-  Solver solver(in_solve_options(16, 10, massspring::Acceleration::None));
-  solver.precompute(s, kDt);
-  for (int k = 0; k < 90; ++k) REQUIRE(solver.step(s).ok());  // 3 s
-  // The points resting on the ball's upper half (within 1 cm of its surface): their velocity
-  // against the surface's, omega x x, on average.
+// The points resting on the ball's upper half (within 1 cm of its surface): their velocity
+// against the surface's, omega x x, on average, relative to the surface's speed.
+double lag_behind_ball(const System& s, double omega) {
   double difference = 0, surface = 0;
   int resting = 0;
   for (int i = 0; i < s.num_points(); ++i) {
@@ -209,7 +200,33 @@ TEST_CASE(
   }
   CAPTURE(resting);
   REQUIRE(resting > 100);
-  CHECK(difference / surface <= 0.05);
+  return difference / surface;
+}
+
+// Dropped on the turning ball, the cloth lands flat and is carried up to speed by friction alone.
+// Run to convergence (200 iterations) its resting points move with the ball's surface to 2.5%
+// after 2 s and 1.8% after 3 s. In 10 plain iterations the friction builds up more slowly: 6.1%
+// after 2 s, 2.9% after 3 s; with Anderson acceleration 4.6% after 2 s.
+TEST_CASE(
+    "contact in the iteration: a cloth on a ball turning at 1 rad/s turns with it after 3 s "
+    "(mu = 0.5, dt = 1/30)") {
+  const double omega = 1;
+  System s = cloth_over_ball(41, 0.5, omega);
+  Solver solver(in_solve_options(16, 10, massspring::Acceleration::None));
+  solver.precompute(s, kDt);
+  for (int k = 0; k < 90; ++k) REQUIRE(solver.step(s).ok());  // 3 s
+  CHECK(lag_behind_ball(s, omega) <= 0.05);
+}
+
+TEST_CASE(
+    "contact in the iteration: a cloth on a ball turning at 1 rad/s turns with it after 2 s "
+    "with Anderson acceleration (mu = 0.5, dt = 1/30, 10 iterations)") {
+  const double omega = 1;
+  System s = cloth_over_ball(41, 0.5, omega);
+  Solver solver(in_solve_options(16, 10, massspring::Acceleration::Anderson));
+  solver.precompute(s, kDt);
+  for (int k = 0; k < 60; ++k) REQUIRE(solver.step(s).ok());  // 2 s
+  CHECK(lag_behind_ball(s, omega) <= 0.05);
 }
 
 }  // namespace contact_projection_test

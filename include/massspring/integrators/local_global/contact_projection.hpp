@@ -11,7 +11,8 @@
 /// FastMassSpringOptions::contact_weight) on Q's diagonal (ReducedSystem::assemble's mass_scale
 /// 1 + alpha) and, per iteration, with P the projection out of the system's colliders
 /// (ColliderSet::project: the normal push, with Coulomb friction at position level on the
-/// displacement over the step) and u_i the dual variable (0 at the step's start) [m]:
+/// displacement over the step) and u_i the dual variable [m] (kept from the previous step, 0 after
+/// a factorization):
 ///   z_i = P(x_i + u_i),   u_i <- x_i + u_i - z_i,   right-hand side += w_i (z_i - u_i).
 /// A point that touches nothing has z_i = x_i and u_i = 0: the term is w_i x_i, a proximal term
 /// that vanishes at convergence. A point in contact converges to x_i = z_i on the surface with
@@ -57,16 +58,20 @@ class ContactProjection {
     }
   }
 
-  /// @brief The step's colliders (their end-of-step poses set), start positions and right-hand
-  /// side's constant part (rhs0, kept as the base the term adds to); the dual variables to 0.
-  /// Inactive without colliders or with alpha 0. Allocates nothing.
+  /// @brief The step's colliders (their end-of-step poses set), start positions, right-hand
+  /// side's constant part (rhs0, kept as the base the term adds to) and the origin the global
+  /// step solves from (its right-hand side is for X - origin: the term adds w (z - u - origin));
+  /// the dual variables are kept from the previous step (warm start). Inactive without colliders or
+  /// with alpha 0. Allocates nothing.
   template <class System>
-  void prepare(System& system, Scalar dt, const Vector<Scalar>& rhs0) {
+  void prepare(System& system, Scalar dt, const Vector<Scalar>& rhs0,
+               const Vector<Scalar>& origin) {
     colliders_ = system.colliders().empty() ? nullptr : &system.colliders();
     if (colliders_) system.colliders().begin_step(dt);
     active_ = colliders_ != nullptr && weight_.size() > 0;
     if (!active_) return;
     x_start_ = system.positions().data();
+    origin_ = origin.data();
     dt_ = dt;
     base_ = rhs0.head(base_.size());  // same size: no allocation
   }
@@ -75,7 +80,7 @@ class ContactProjection {
   [[nodiscard]] bool active() const { return active_; }
 
   /// @brief The local step of the term at the iterate x: z = P(x + u), u <- x + u - z, and
-  /// rhs0 = base + w (z - u) on the term's rows (x unchanged); returns E_c at x [J].
+  /// rhs0 = base + w (z - u - origin) on the term's rows (x unchanged); returns E_c at x [J].
   double apply(const Scalar* x, Vector<Scalar>& rhs0) {
     double energy = 0;
     Scalar* b = rhs0.data();
@@ -86,8 +91,9 @@ class ContactProjection {
       const Scalar w = weight_(r);
       Scalar* b_r = b + 3 * r;
       const Scalar* b0_r = b0 + 3 * r;
+      const Scalar* o = origin_ + 3 * r;
       if (!projects_[std::size_t(r)]) {
-        for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * xr[c];
+        for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (xr[c] - o[c]);
         continue;
       }
       Scalar* u = dual + 3 * r;
@@ -97,12 +103,12 @@ class ContactProjection {
       if (z[0] == moved[0] && z[1] == moved[1] && z[2] == moved[2]) {
         // Touches nothing: z = x + u, so u becomes 0 and the term is w x.
         u[0] = u[1] = u[2] = 0;
-        for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * xr[c];
+        for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (xr[c] - o[c]);
         continue;
       }
       for (int c = 0; c < 3; ++c) {
         u[c] = moved[c] - z[c];
-        b_r[c] = b0_r[c] + w * (z[c] - u[c]);
+        b_r[c] = b0_r[c] + w * (z[c] - u[c] - o[c]);
       }
       Scalar p[3] = {xr[0], xr[1], xr[2]};
       energy += project(r, p);
@@ -137,6 +143,7 @@ class ContactProjection {
   Vector<Scalar> dual_;  // u, 3 per row [m]
   const contact::ColliderSet<Scalar>* colliders_ = nullptr;
   const Scalar* x_start_ = nullptr;
+  const Scalar* origin_ = nullptr;  // 3 per row [m]
   Scalar dt_ = 0;
   bool active_ = false;
 };

@@ -41,8 +41,9 @@ namespace massspring {
 ///   E(X) = sum_e k_e/2 (|x_i - x_j| - r_e)^2 + 1/(2 dt^2) tr((X - Y)^T M (X - Y)) - tr(X^T F)
 /// with Y = X^t + dt V^t and F the external forces, which is one step of implicit Euler. Each
 /// iteration alternates a local step (d_e = r_e (x_i - x_j) / |x_i - x_j|, every spring) and a
-/// global step (solve Q X = A^T K D + M Y / dt^2 + F with Q = A^T K A + M / dt^2); it never
-/// increases E. Afterwards V = (X - X^t) / dt.
+/// global step (solve Q X = A^T K D + M Y / dt^2 + F with Q = A^T K A + M / dt^2, as
+/// Q (X - X^t) = A^T K (D - A X^t) + M V^t / dt + F: a point on which nothing acts keeps its
+/// position exactly, inertial_term.hpp); it never increases E. Afterwards V = (X - X^t) / dt.
 ///
 /// Force terms of the system (system.add_force): a term that declares a uniform linear damping
 /// (F = -beta v, dF/dv = -beta I constant: `LinearDrag`, see ForceConcept::linear_damping) folds
@@ -201,7 +202,6 @@ class FastMassSpring {
     reduced_.renumber(system, llt_.permutation(), exact);
     const int nx = reduced_.nx;
     springs_.build(system, reduced_.row, nx);
-    reduced_.couple(springs_);
     contact_.build(system, reduced_, contact_weight_, inv_dt2);
     inertia_.build(system, reduced_, inv_dt2, drag_ / dt_);
 
@@ -236,8 +236,9 @@ class FastMassSpring {
                      options.initial_guess == InitialGuess::Inertial, buffers_[0].data());
     if (pins_ == PinMode::Exact)
       for (Buffer& b : buffers_) restore_pins(b.data());
+    springs_.subtract_from(inertia_.origin.data(), inertia_.rhs0.data(), reduced_.nr);
     springs_.set_rest_lengths(system.rest_lengths());
-    contact_.prepare(system, dt_, inertia_.rhs0);
+    contact_.prepare(system, dt_, inertia_.rhs0, inertia_.origin);
   }
 
   // Pinned rows (exact pins) back to their targets, after a solve or a scatter wrote into them.
@@ -257,13 +258,16 @@ class FastMassSpring {
     return quadratic + springs_.template pass<true, Energy>(x, w, reduced_.nx);
   }
 
-  // The global step in place: w = Q^-1 w on the free rows; pinned rows restored.
+  // The global step in place: w = origin + Q^-1 w on the free rows (the solve gives the
+  // displacement from the step's start, inertial_term.hpp); pinned rows restored.
   MASSSPRING_NOINLINE void global_step(Scalar* w) {
     llt_.solve_in_place(w);
+    inertia_.add_origin(w, reduced_.nr);
     restore_pins(w);
   }
 
-  // One whole iteration, w = G(x) = Q^-1 (rhs0 + A^T K D(x)), returning E(x) when Energy.
+  // One whole iteration, w = G(x) = origin + Q^-1 (rhs0 + A^T K D(x)), returning E(x) when
+  // Energy.
   template <bool Energy>
   double iteration(Scalar* x, Scalar* w) {
     const double energy = local_step<Energy>(x, w);

@@ -4,8 +4,17 @@
 /// springs', constant over a step: the inertia 1/(2 h^2) |X - Y|_M^2 with the inertial prediction
 /// Y = X^t + h V^t, the uniform damping beta/(2 h) |X - X^t|^2 folded into it, the external force
 /// -tr(X^T F) and the penalty pins w/2 |X_P - X_target|^2; and the constant part of the global
-/// step's right-hand side, rhs0 = M Y / h^2 + (beta / h) X^t + F (+ w X_target, + the couplings to
-/// exact pins). Units: h [s], M [kg], beta [N s/m], F [N], w [N/m]; energies in J.
+/// step's right-hand side.
+///
+/// The global step solves for the displacement from the step's start, D = X - X^t (the origin:
+/// X^t on the free rows, the targets on exact pins' rows), not for X: Q X = b becomes
+/// Q D = b - Q X^t, whose constant part is
+///   rhs0 = M V^t / h + F (+ w (X_target - X^t) on penalty pins) - A^T K A X^t,
+/// each term formed as a difference (Y - X^t = h V^t; per spring k_e (x_i - x_j) with the
+/// pinned ends' targets) so that no term of size |X| is cancelled by another. A point on which
+/// nothing acts then gets D = 0 exactly and stays where it is, where X = Q^-1 (M Y / h^2) would
+/// round it by about eps |X| each step, the same way every step (a drift of eps |X| / h in
+/// velocity per step). Units: h [s], M [kg], beta [N s/m], F [N], w [N/m]; energies in J.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -20,7 +29,8 @@ template <class Scalar>
 struct InertialTerm {
   using Buffer = Vector<Scalar>;
 
-  Buffer rhs0;      // 3 per unknown: the right-hand side's constant part
+  Buffer rhs0;      // 3 per unknown: the right-hand side's constant part (for D = X - origin)
+  Buffer origin;    // 3 per iterate row: X^t on the free rows, the targets on exact pins' rows
   Buffer inertial;  // 3 per unknown: Y (with damping: (m/h^2 Y + beta/h X^t) / (m/h^2 + beta/h))
   Buffer force;     // 3 per unknown: F
   Buffer mass_h2;   // per unknown: m / h^2 + beta / h
@@ -38,6 +48,7 @@ struct InertialTerm {
     for (int r = 0; r < nr; ++r)
       mass_h2(r) = system.masses()(reduced.point[std::size_t(r)]) * inv_dt2 + drag_diagonal;
     rhs0.resize(free_size);
+    origin.resize(3 * Eigen::Index(nx));
     inertial.resize(free_size);
     force.resize(free_size);
     targets.resize(3 * Eigen::Index(nx - nr));
@@ -47,6 +58,7 @@ struct InertialTerm {
   /// @brief The step's constants at the system's state, and the starting iterate x0 (the current
   /// positions, or Y when `inertial_guess`) on the free rows. `term_force` (may be null: no
   /// force) is the force terms' at the step's start [N]; `penalty_weight` is w, 0 for exact pins.
+  /// The springs' part of rhs0, -A^T K A origin, is added by PackedSprings::subtract_from.
   template <class System>
   void prepare(const System& system, const ReducedSystem<Scalar>& reduced, Scalar dt, Scalar drag,
                Scalar penalty_weight, const Points<Scalar>* term_force, bool inertial_guess,
@@ -67,7 +79,9 @@ struct InertialTerm {
         // m/(2h^2)|x - y|^2 + beta/(2h)|x - x^t|^2 = (m/h^2 + beta/h)/2 |x - y'|^2 + const.
         inertial(3 * r + c) = drag > 0 ? (mh * y + drag_h * x(i, c)) / (mh + drag_h) : y;
         force(3 * r + c) = f(c);
-        rhs0(3 * r + c) = mh * y + drag_h * x(i, c) + f(c);
+        // (m/h^2 Y + beta/h X^t + F) - (m/h^2 + beta/h) X^t
+        rhs0(3 * r + c) = mh * (dt * v(i, c)) + f(c);
+        origin(3 * r + c) = x(i, c);
         x0[3 * r + c] = inertial_guess ? y : x(i, c);
       }
     }
@@ -77,14 +91,25 @@ struct InertialTerm {
       for (std::size_t p = 0; p < rows.size(); ++p)
         for (int c = 0; c < 3; ++c) {
           penalty_targets(3 * Eigen::Index(p) + c) = pins(Eigen::Index(p), c);
-          rhs0(3 * rows[p] + c) += penalty_weight * pins(Eigen::Index(p), c);
+          rhs0(3 * rows[p] + c) +=
+              penalty_weight * (pins(Eigen::Index(p), c) - origin(3 * rows[p] + c));
         }
     } else {
+      // A spring to an exact pin: its k x_target on the right-hand side (-Q_FP X_P) comes with
+      // the springs' difference k (x_free - x_target) (PackedSprings::subtract_from).
       for (int p = 0; p < nx - nr; ++p)
-        for (int c = 0; c < 3; ++c) targets(3 * p + c) = pins(p, c);
-      for (const auto& cp : reduced.coupling)
-        for (int c = 0; c < 3; ++c) rhs0(3 * cp.row + c) += cp.k * pins(cp.pin, c);
+        for (int c = 0; c < 3; ++c) {
+          targets(3 * p + c) = pins(p, c);
+          origin(3 * (nr + p) + c) = pins(p, c);
+        }
     }
+  }
+
+  /// @brief X = origin + D on the free rows, for the global step's solution D in place.
+  void add_origin(Scalar* d, int free_rows) const {
+    const Scalar* o = origin.data();
+    const Eigen::Index size = 3 * Eigen::Index(free_rows);
+    for (Eigen::Index i = 0; i < size; ++i) d[i] += o[i];
   }
 
   /// @brief The exact pins' rows (after the `free_rows` free ones) back to their targets.

@@ -4,8 +4,9 @@
 /// numbering of its unknowns (the model is libigl's min_quad_with_fixed). With exact pins the
 /// pinned points' rows and columns are eliminated: Q = A_F^T K A_F + M_F / dt^2 + (beta / dt) I
 /// over the free points F, and a spring joining a free point to a pinned one moves k x_pinned to
-/// the right-hand side (-Q_FP X_P). With penalty pins Q covers every point and adds w on the
-/// pinned points' diagonal (Q += w C^T C, right-hand side += w C^T X_target).
+/// the right-hand side (-Q_FP X_P; PackedSprings::subtract_from adds it). With penalty pins Q
+/// covers every point and adds w on the pinned points' diagonal (Q += w C^T C, right-hand side += w
+/// C^T X_target).
 ///
 /// Inside a step the iterate lives in the factor's row order (the fill-reducing permutation), as
 /// a row-major #rows x 3 array: free points first, in the factor's order, then (exact pins) the
@@ -15,26 +16,16 @@
 #include <cstddef>
 #include <vector>
 
-#include "massspring/integrators/local_global/spring_pass.hpp"
-
 namespace massspring::local_global {
 
 template <class Scalar>
 struct ReducedSystem {
-  /// @brief A free point joined by a spring of stiffness k [N/m] to a pinned one.
-  struct Coupling {
-    int row;  // iterate row of the free point
-    int pin;  // row of the pinned point in system.pin_targets()
-    Scalar k;
-  };
-
   int n = 0;                      // points
   int nr = 0;                     // unknowns of Q (free points; every point with penalty pins)
   int nx = 0;                     // iterate rows (nr, then the pinned points with exact pins)
   std::vector<int> free;          // point of each of Q's rows, in the system's order
   std::vector<int> row, point;    // iterate row of each point, point of each iterate row
   std::vector<int> penalty_rows;  // iterate rows of the pinned points (penalty pins)
-  std::vector<Coupling> coupling;
 
   /// @brief Numbers the unknowns and assembles Q from triplets (duplicates summed):
   /// A^T K A over the springs, then mass_scale m_i / dt^2 + drag_diagonal on each unknown's
@@ -95,16 +86,6 @@ struct ReducedSystem {
     penalty_rows.clear();
     if (!exact)
       for (int p : system.pinned()) penalty_rows.push_back(row[std::size_t(p)]);
-  }
-
-  /// @brief The couplings of free points to pinned ones, from the packed springs (pinned rows
-  /// come after the free ones, so a coupled spring's b is the pinned point).
-  void couple(const PackedSprings<Scalar>& springs) {
-    coupling.clear();
-    for (int s = 0; s < springs.size(); ++s) {
-      const SpringEnds& e = springs.ends[std::size_t(s)];
-      if (e.a < nr && e.b >= nr) coupling.push_back({e.a, e.b - nr, springs.stiffness(s)});
-    }
   }
 };
 

@@ -131,6 +131,30 @@ struct PackedSprings {
     }
   }
 
+  /// @brief rhs -= A^T K A o on the first `free_rows` rows (rhs has no others): for each spring
+  /// k_e (o_a - o_b) subtracted from row a and added to row b when b is one of them (a row after
+  /// them is an exact pin's: its target is in o, and the spring's k_e o_b is the pin's share of the
+  /// right-hand side). Springs between two such rows are skipped. Once per step, for the global
+  /// step's displacement form (inertial_term.hpp).
+  void subtract_from(const Scalar* o, Scalar* rhs, int free_rows) const {
+    const SpringEnds* sp = ends.data();
+    const Scalar* k = stiffness.data();
+    for (int e = 0; e < count; ++e) {
+      const int a = sp[e].a, b = sp[e].b;
+      if (a >= free_rows) break;  // sorted by a: the rest join two pinned rows
+      const Scalar* oa = o + 3 * a;
+      const Scalar* ob = o + 3 * b;
+      const Scalar d0 = k[e] * (oa[0] - ob[0]), d1 = k[e] * (oa[1] - ob[1]),
+                   d2 = k[e] * (oa[2] - ob[2]);
+      Scalar* ra = rhs + 3 * a;
+      ra[0] -= d0, ra[1] -= d1, ra[2] -= d2;
+      if (b < free_rows) {
+        Scalar* rb = rhs + 3 * b;
+        rb[0] += d0, rb[1] += d1, rb[2] += d2;
+      }
+    }
+  }
+
   /// @brief One pass over the springs at the iterate x (`rows` rows of three). With Scatter (the
   /// local step) it adds A^T K D into w (rows of pinned points get garbage: the caller restores
   /// them); with Energy it returns the springs' energy [J]; with neither (after the last
