@@ -703,3 +703,24 @@ TEST_CASE(
   contact::ColliderContact<double> kc;
   CHECK_FALSE(shapes[0].collider.contact(V3(-2, 0.6, 0), V3(2, 0.6, 0), 0, kc));
 }
+
+// Oracle: the closed form. A point falls straight down at x = 0.3 through a sphere of radius 0.5
+// with thickness 0.01 and ends below its centre's height, inside (where the nearest surface
+// would push it on down) or beyond: its path enters the contact zone at
+// e = (0.3, sqrt(0.51^2 - 0.3^2), 0), and the push takes it onto the plane tangent there,
+// depth (e - x_end) . e / |e|. The solver's entry may lie up to a millionth of the radius inside
+// (a start that close counts as outside): 1e-6 covers it.
+TEST_CASE("solid colliders: the push of a path through a sphere equals the closed form") {
+  Collider sphere = Collider::sphere(V3::Zero(), 0.5);
+  sphere.set_thickness(0.01);
+  for (const double end_height : {-0.1, -0.3, -1.0}) {
+    CAPTURE(end_height);
+    const V3 x(0.3, 2, 0), x_end(0.3, end_height, 0);
+    const V3 e(0.3, std::sqrt(0.51 * 0.51 - 0.3 * 0.3), 0);
+    const V3 n = e / 0.51;
+    contact::ColliderContact<double> kc;
+    REQUIRE(sphere.contact(x, x_end, 0, kc));
+    CHECK(std::abs(kc.depth - (e - x_end).dot(n)) <= 1e-6);
+    CHECK((kc.normal - n).norm() <= 1e-6);
+  }
+}

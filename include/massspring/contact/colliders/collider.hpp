@@ -247,9 +247,13 @@ class Collider {
         return d.distance > reach_ + motion_ + slop;
       }
       default: {
-        // The end, then the whole path (a point may cross the solid within one step).
+        // The end, then the whole path (a point may cross the solid within one step): first
+        // the bound |x_end - c| - |x_end - x_start| on the path's distance from the centre c,
+        // then that distance.
         const Scalar r = reach_ + slop;
-        if (!((x_end - end_translation_).squaredNorm() > r * r)) return false;
+        const Scalar end2 = (x_end - end_translation_).squaredNorm();
+        if (!(end2 > r * r)) return false;
+        if (std::sqrt(end2) - (x_end - x_start).norm() > r + motion_) return true;
         const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
         return d.distance > r + motion_;
       }
@@ -411,7 +415,8 @@ class Collider {
   // its local path a -> b starts outside and passes inside the contact zone; if so, c pushes
   // x_end onto the tangent plane at the entry. phi is 1-Lipschitz and convex along the path, so
   // its minimum is at least (phi(a) + phi_end - |b - a|) / 2 (most paths stop there), and is
-  // found by golden-section search (60 steps).
+  // found by golden-section search (60 steps), or for a sphere at the path's nearest point to
+  // the centre, s = clamp(-a.d / |d|^2, 0, 1) with d = b - a.
   bool crossed(const V3& x_start, const V3& x_end, Scalar phi_end, Scalar slop,
                ColliderContact<Scalar>& c) const {
     const V3 a = rotation_.transpose() * (x_start - translation_);
@@ -419,6 +424,16 @@ class Collider {
     V3 n;
     const Scalar phi_a = local_phi(a, n);
     if ((phi_a + phi_end - (b - a).norm()) / 2 >= thickness_) return false;
+    if (shape_ == ColliderShape::Sphere) {
+      // The nearest point of the path to the centre, in closed form.
+      const V3 d = b - a;
+      const Scalar dd = d.squaredNorm();
+      const Scalar s_min = dd > 0 ? std::clamp(-a.dot(d) / dd, Scalar(0), Scalar(1)) : Scalar(0);
+      if (!(local_phi(a + s_min * d, n) < thickness_)) return false;
+      c.depth = 0;
+      entry_push(x_start, x_end, slop, s_min, c);
+      return c.depth > 0;
+    }
     const auto phi_at = [&](Scalar s) { return local_phi(a + s * (b - a), n); };
     const Scalar golden = Scalar(0.6180339887498949);
     Scalar lo = 0, hi = 1, s1 = hi - golden * (hi - lo), s2 = lo + golden * (hi - lo);
@@ -442,9 +457,12 @@ class Collider {
   }
 
   // For a deep point whose path started outside: the entry point e of the local path a -> b
-  // into the contact zone (bisection on phi - thickness over the parameters [0, inside], 48
-  // halvings; the path is in the zone at `inside`), and the push of x_end onto the tangent plane
-  // there (outside the solid, which is convex).
+  // into the contact zone (the parameters [0, inside]; the path is in the zone at `inside`), and
+  // the push of x_end onto the tangent plane there (outside the solid, which is convex). A
+  // sphere's entry is the smaller root s of |a + s (b - a)|^2 = rho^2, rho = r + thickness - tol,
+  // taken as c0 / q with q = -a.d + sqrt((a.d)^2 - |d|^2 c0) (no cancellation: a.d < 0 on the
+  // way in; Press et al., Numerical Recipes, 3rd ed., section 5.6); the other shapes' by
+  // bisection on phi - thickness (48 halvings).
   void entry_push(const V3& x_start, const V3& x_end, Scalar slop, Scalar inside,
                   ColliderContact<Scalar>& c) const {
     const V3 a = rotation_.transpose() * (x_start - translation_);
@@ -453,8 +471,21 @@ class Collider {
     // A start within a millionth of the solid's inner size below the surface counts as outside
     // (a point resting on it sits there up to rounding, and must not fall through).
     const Scalar start_tol = std::max(slop, Scalar(1e-6) * inner_);
-    if (!(local_phi(a, n) >= thickness_ - start_tol)) return;  // started inside: nearest surface
+    const Scalar phi_a = local_phi(a, n);
+    if (!(phi_a >= thickness_ - start_tol)) return;  // started inside: nearest surface
     Scalar lo = 0, hi = inside;
+    if (shape_ == ColliderShape::Sphere) {
+      const V3 d = b - a;
+      const Scalar rho = radius_ + thickness_ - start_tol;
+      const Scalar dd = d.squaredNorm(), ad = a.dot(d);
+      const Scalar c0 = std::max(Scalar(0), (phi_a + radius_ - rho) * (phi_a + radius_ + rho));
+      const Scalar disc = ad * ad - dd * c0;
+      if (ad < 0 && disc >= 0) {
+        const Scalar q = std::sqrt(disc) - ad;  // > 0
+        lo = std::min(c0 / q, inside);
+        hi = lo;
+      }
+    }
     for (int k = 0; k < 48 && hi - lo > std::numeric_limits<Scalar>::epsilon(); ++k) {
       const Scalar mid = (lo + hi) / 2;
       if (local_phi(a + mid * (b - a), n) >= thickness_ - start_tol)
