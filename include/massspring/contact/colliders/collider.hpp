@@ -35,6 +35,7 @@
 
 #include "massspring/contact/colliders/collider_contact.hpp"
 #include "massspring/contact/colliders/rotation.hpp"
+#include "massspring/contact/distance/path_sphere.hpp"
 #include "massspring/contact/distance/point_segment.hpp"
 #include "massspring/detail/is_complete.hpp"
 #include "massspring/detail/validate.hpp"
@@ -424,33 +425,30 @@ class Collider {
     V3 n;
     const Scalar phi_a = local_phi(a, n);
     if ((phi_a + phi_end - (b - a).norm()) / 2 >= thickness_) return false;
-    if (shape_ == ColliderShape::Sphere) {
-      // The nearest point of the path to the centre, in closed form.
-      const V3 d = b - a;
-      const Scalar dd = d.squaredNorm();
-      const Scalar s_min = dd > 0 ? std::clamp(-a.dot(d) / dd, Scalar(0), Scalar(1)) : Scalar(0);
-      if (!(local_phi(a + s_min * d, n) < thickness_)) return false;
-      c.depth = 0;
-      entry_push(x_start, x_end, slop, s_min, c);
-      return c.depth > 0;
-    }
     const auto phi_at = [&](Scalar s) { return local_phi(a + s * (b - a), n); };
-    const Scalar golden = Scalar(0.6180339887498949);
-    Scalar lo = 0, hi = 1, s1 = hi - golden * (hi - lo), s2 = lo + golden * (hi - lo);
-    Scalar f1 = phi_at(s1), f2 = phi_at(s2);
-    for (int k = 0; k < 60; ++k) {
-      if (f1 < f2) {
-        hi = s2, s2 = s1, f2 = f1;
-        s1 = hi - golden * (hi - lo);
-        f1 = phi_at(s1);
-      } else {
-        lo = s1, s1 = s2, f1 = f2;
-        s2 = lo + golden * (hi - lo);
-        f2 = phi_at(s2);
+    Scalar s_min = 0, f_min = 0;  // the path's deepest point and its phi
+    if (shape_ == ColliderShape::Sphere) {
+      s_min = path_nearest_to_origin<Scalar>(a, b - a);
+      f_min = phi_at(s_min);
+    } else {
+      const Scalar golden = Scalar(0.6180339887498949);
+      Scalar lo = 0, hi = 1, s1 = hi - golden * (hi - lo), s2 = lo + golden * (hi - lo);
+      Scalar f1 = phi_at(s1), f2 = phi_at(s2);
+      for (int k = 0; k < 60; ++k) {
+        if (f1 < f2) {
+          hi = s2, s2 = s1, f2 = f1;
+          s1 = hi - golden * (hi - lo);
+          f1 = phi_at(s1);
+        } else {
+          lo = s1, s1 = s2, f1 = f2;
+          s2 = lo + golden * (hi - lo);
+          f2 = phi_at(s2);
+        }
       }
+      s_min = f1 < f2 ? s1 : s2;
+      f_min = std::min(f1, f2);
     }
-    const Scalar s_min = f1 < f2 ? s1 : s2;
-    if (!(std::min(f1, f2) < thickness_)) return false;
+    if (!(f_min < thickness_)) return false;
     c.depth = 0;
     entry_push(x_start, x_end, slop, s_min, c);
     return c.depth > 0;
@@ -459,10 +457,8 @@ class Collider {
   // For a deep point whose path started outside: the entry point e of the local path a -> b
   // into the contact zone (the parameters [0, inside]; the path is in the zone at `inside`), and
   // the push of x_end onto the tangent plane there (outside the solid, which is convex). A
-  // sphere's entry is the smaller root s of |a + s (b - a)|^2 = rho^2, rho = r + thickness - tol,
-  // taken as c0 / q with q = -a.d + sqrt((a.d)^2 - |d|^2 c0) (no cancellation: a.d < 0 on the
-  // way in; Press et al., Numerical Recipes, 3rd ed., section 5.6); the other shapes' by
-  // bisection on phi - thickness (48 halvings).
+  // sphere's entry is in closed form (distance/path_sphere.hpp, rho = r + thickness - tol); the
+  // other shapes' by bisection on phi - thickness (48 halvings).
   void entry_push(const V3& x_start, const V3& x_end, Scalar slop, Scalar inside,
                   ColliderContact<Scalar>& c) const {
     const V3 a = rotation_.transpose() * (x_start - translation_);
@@ -474,18 +470,9 @@ class Collider {
     const Scalar phi_a = local_phi(a, n);
     if (!(phi_a >= thickness_ - start_tol)) return;  // started inside: nearest surface
     Scalar lo = 0, hi = inside;
-    if (shape_ == ColliderShape::Sphere) {
-      const V3 d = b - a;
-      const Scalar rho = radius_ + thickness_ - start_tol;
-      const Scalar dd = d.squaredNorm(), ad = a.dot(d);
-      const Scalar c0 = std::max(Scalar(0), (phi_a + radius_ - rho) * (phi_a + radius_ + rho));
-      const Scalar disc = ad * ad - dd * c0;
-      if (ad < 0 && disc >= 0) {
-        const Scalar q = std::sqrt(disc) - ad;  // > 0
-        lo = std::min(c0 / q, inside);
-        hi = lo;
-      }
-    }
+    if (shape_ == ColliderShape::Sphere &&
+        path_enters_ball(a, V3(b - a), phi_a + radius_, radius_ + thickness_ - start_tol, lo))
+      hi = lo = std::min(lo, inside);
     for (int k = 0; k < 48 && hi - lo > std::numeric_limits<Scalar>::epsilon(); ++k) {
       const Scalar mid = (lo + hi) / 2;
       if (local_phi(a + mid * (b - a), n) >= thickness_ - start_tol)
