@@ -31,10 +31,12 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <tuple>
 #include <utility>
 
 #include "massspring/contact/colliders/collider_contact.hpp"
 #include "massspring/contact/colliders/rotation.hpp"
+#include "massspring/contact/distance/path_search.hpp"
 #include "massspring/contact/distance/path_sphere.hpp"
 #include "massspring/contact/distance/point_segment.hpp"
 #include "massspring/detail/is_complete.hpp"
@@ -431,22 +433,7 @@ class Collider {
       s_min = path_nearest_to_origin<Scalar>(a, b - a);
       f_min = phi_at(s_min);
     } else {
-      const Scalar golden = Scalar(0.6180339887498949);
-      Scalar lo = 0, hi = 1, s1 = hi - golden * (hi - lo), s2 = lo + golden * (hi - lo);
-      Scalar f1 = phi_at(s1), f2 = phi_at(s2);
-      for (int k = 0; k < 60; ++k) {
-        if (f1 < f2) {
-          hi = s2, s2 = s1, f2 = f1;
-          s1 = hi - golden * (hi - lo);
-          f1 = phi_at(s1);
-        } else {
-          lo = s1, s1 = s2, f1 = f2;
-          s2 = lo + golden * (hi - lo);
-          f2 = phi_at(s2);
-        }
-      }
-      s_min = f1 < f2 ? s1 : s2;
-      f_min = std::min(f1, f2);
+      std::tie(s_min, f_min) = golden_section_minimum<Scalar>(phi_at);
     }
     if (!(f_min < thickness_)) return false;
     c.depth = 0;
@@ -473,13 +460,8 @@ class Collider {
     if (shape_ == ColliderShape::Sphere &&
         path_enters_ball(a, V3(b - a), phi_a + radius_, radius_ + thickness_ - start_tol, lo))
       hi = lo = std::min(lo, inside);
-    for (int k = 0; k < 48 && hi - lo > std::numeric_limits<Scalar>::epsilon(); ++k) {
-      const Scalar mid = (lo + hi) / 2;
-      if (local_phi(a + mid * (b - a), n) >= thickness_ - start_tol)
-        lo = mid;
-      else
-        hi = mid;
-    }
+    lo = bisect_last<Scalar>(
+        [&](Scalar s) { return local_phi(a + s * (b - a), n) >= thickness_ - start_tol; }, lo, hi);
     const V3 e = a + lo * (b - a);
     const Scalar phi_e = local_phi(e, n);
     // Onto the plane tangent at e, moved out to phi = thickness (e may start a rounding inside).
