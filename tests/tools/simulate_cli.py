@@ -640,6 +640,8 @@ def resume(simulate, source, work):
         # colliders of every kind, moving, with every integrator
         (["contact.json"], []),
         (["contact.json"], ["--acceleration", "chebyshev", "--iterations", "10"]),
+        # contact inside the iteration: the state holds the contact term's dual variables
+        (["contact.json"], ["--contact-weight", "16", "--iterations", "10"]),
         (["contact.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),
         (["contact.json"], ["--integrator", "forward-euler", "--dt", "0.0005"]),
         (["contact.json"], ["--integrator", "backward-euler"]),
@@ -676,6 +678,27 @@ def resume(simulate, source, work):
         check(a == b + tail, f"{args}: 10 + 10 frames differ from 20 frames")
         check(all(r.split(",")[0] in {str(f) for f in range(10, 21)} for r in c[1:]),
               f"{args}: the resumed run numbers its frames 10..20")
+    # A state whose contact dual variables do not fit the scene is refused before a file is
+    # written, naming the key.
+    k = next(i for i, (_, o) in enumerate(cases) if "--contact-weight" in o)
+    with open(os.path.join(work, f"r{k}_state.json")) as handle:
+        saved = json.load(handle)
+    check(len(saved["run"]["contact_duals"]) == len(saved["positions"]) and
+          any(any(x != 0 for x in row) for row in saved["run"]["contact_duals"]),
+          "the state does not hold the contact term's dual variables")
+    for duals, message in ((saved["run"]["contact_duals"][:-1],
+                            f"has {len(saved['positions']) - 1} rows for "
+                            f"{len(saved['positions'])} points"),
+                           ([[0, 0]] * len(saved["positions"]), "row 0 is not three numbers")):
+        saved["run"]["contact_duals"] = duals
+        with open(os.path.join(work, "bad_duals.json"), "w") as handle:
+            json.dump(saved, handle)
+        before = snapshot(work)
+        result = run(simulate, ["bad_duals.json", "--contact-weight", "16", "--csv", "bad.csv"],
+                     work)
+        check(result.returncode == 1 and 'bad_duals.json: key "run": "contact_duals" ' + message
+              in result.stderr, f"bad contact_duals: {result.returncode} {result.stderr!r}")
+        check(snapshot(work) == before, "bad contact_duals: the folder changed")
     # Without --shrink's rest lengths at frame 0 a state cannot resume a shrinking run.
     result = run(simulate, ["r0_state.json", "--shrink", "0.5"], work)
     check(result.returncode == 1 and "was not saved by a run with the same --shrink" in

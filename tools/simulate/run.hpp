@@ -64,6 +64,7 @@ struct Plan {
   std::string integrator;     // its name (IntegratorNaming::Cli)
   massspring::IntegratorKind kind = massspring::IntegratorKind::FastMassSpring;
   std::optional<double> saved_rho;               // a saved state's Chebyshev rho
+  const nlohmann::json* saved_duals = nullptr;   // a saved state's contact dual variables
   std::optional<std::vector<double>> rest_at_0;  // --shrink: rest lengths at frame 0
   StabilityHint hint;                            // explicit integrators: their stable step
 };
@@ -95,6 +96,7 @@ Plan resolve(const Config& c, const Setup<System>& s) {
   const J* saved_integrator = run_entry(c, run, "integrator", &J::is_string);
   if (const J* r = run_entry(c, run, "chebyshev_rho", &J::is_number))
     p.saved_rho = r->get<double>();
+  p.saved_duals = run_entry(c, run, "contact_duals", &J::is_array);
   p.dt = c.dt_given ? c.dt
          : xml      ? s.fosssim->dt
          : saved_dt ? saved_dt->get<double>()
@@ -338,6 +340,15 @@ void save_state(const Config& c, const Setup<System>& s, const Plan& p, const So
     if (c.acceleration == "chebyshev" && frame > 0)
       run["chebyshev_rho"] = solver.chebyshev_rho() > 0 ? double(solver.chebyshev_rho())
                                                         : double(std::numeric_limits<float>::min());
+  // The contact term's dual variables (--contact-weight): the iteration starts from them.
+  if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
+    if (c.contact_weight > 0) {
+      const auto u = solver.contact_duals();
+      nlohmann::json rows = nlohmann::json::array();
+      for (Eigen::Index i = 0; i < u.rows(); ++i)
+        rows.push_back({double(u(i, 0)), double(u(i, 1)), double(u(i, 2))});
+      run["contact_duals"] = std::move(rows);
+    }
   if (p.rest_at_0) {
     run["shrink"] = c.shrink;
     run["rest_lengths_at_frame_0"] = *p.rest_at_0;
@@ -487,6 +498,31 @@ inline int exit_status(const Config& c, const Plan& p, const Outcome& o, bool fa
   return failed ? kExitBadInput : 0;
 }
 
+// A saved state's contact dual variables, into the solver: one [x, y, z] per point, numbers.
+template <class System>
+void restore_duals(const Config& c, const Setup<System>& s, const nlohmann::json& rows,
+                   massspring::FastMassSpring<System>& solver) {
+  using Points = typename massspring::FastMassSpring<System>::PointsType;
+  using Scalar = typename System::Scalar;
+  if (rows.size() != std::size_t(s.system.num_points()))
+    throw Error(c.scene + ": key \"run\": \"contact_duals\" has " + std::to_string(rows.size()) +
+                " rows for " + std::to_string(s.system.num_points()) + " points");
+  Points u(s.system.num_points(), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const nlohmann::json& row = rows[i];
+    if (!row.is_array() || row.size() != 3 || !row[0].is_number() || !row[1].is_number() ||
+        !row[2].is_number())
+      throw Error(c.scene + ": key \"run\": \"contact_duals\" row " + std::to_string(i) +
+                  " is not three numbers: " + row.dump());
+    for (int k = 0; k < 3; ++k) u(Eigen::Index(i), k) = Scalar(row[std::size_t(k)].get<double>());
+  }
+  try {
+    solver.set_contact_duals(u);
+  } catch (const massspring::Error& e) {
+    throw Error(c.scene + ": key \"run\": \"contact_duals\": " + e.what());
+  }
+}
+
 // A run with one integrator: configure and precompute, open the outputs, step, close the
 // outputs, report; returns the exit status.
 template <class System, class Solver>
@@ -495,6 +531,8 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver,
   configure<System>(c, p, solver);
   const std::string what = describe<System>(c, solver, integrator);
   const double precompute_ms = timed_precompute(solver, s.system, p.dt);
+  if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
+    if (p.saved_duals && c.contact_weight > 0) restore_duals(c, s, *p.saved_duals, solver);
   // Every check has passed: from here on files are written.
   RunFiles<System> files(c, s, p);
   print_header(c, s, p, what, precompute_ms);

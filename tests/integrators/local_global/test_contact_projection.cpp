@@ -8,7 +8,8 @@
 // - a cloth dropped on a ball over a floor never has a point inside the ball at a step end, and
 //   rests on it with little stretch;
 // - a cloth dropped on a ball that turns about the vertical turns with it (friction): to 5% after
-//   3 s, and after 2 s with Anderson acceleration.
+//   3 s, and after 2 s with Anderson acceleration;
+// - the dual variables saved and restored resume a run bit for bit.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -224,6 +225,69 @@ TEST_CASE(
     "contact in the iteration: a cloth on a ball turning at 1 rad/s turns with it after 2 s "
     "with Anderson acceleration (mu = 0.5, dt = 1/30, 10 iterations)") {
   CHECK(lag_behind_ball(massspring::Acceleration::Anderson, 2) <= 0.05);
+}
+
+// The dual variables are the state the term carries from step to step: a run stopped after 10
+// steps and continued by a new solver from the positions, velocities and duals gives the
+// uninterrupted run's 20 steps bit for bit; without the duals it does not.
+TEST_CASE("contact in the iteration: a run resumed with its dual variables continues bit for bit") {
+  const auto options = in_solve_options(16, 10, massspring::Acceleration::None);
+  System whole = cloth_over_ball(21, 0.5, 1);
+  Solver first(options);
+  first.precompute(whole, kDt);
+  for (int k = 0; k < 10; ++k) REQUIRE(first.step(whole).ok());
+  const massspring::Points<double> duals = first.contact_duals();
+  REQUIRE(duals.rows() == whole.num_points());
+  CHECK(duals.cwiseAbs().maxCoeff() > 0);  // the cloth rests on the ball: the term acts
+  System resumed = whole, without = whole;
+  for (int k = 0; k < 10; ++k) REQUIRE(first.step(whole).ok());
+
+  Solver second(options), third(options);
+  second.precompute(resumed, kDt);
+  CHECK(second.contact_duals().cwiseAbs().maxCoeff() == 0);  // a factorization starts from 0
+  second.set_contact_duals(duals);
+  CHECK(second.contact_duals() == duals);
+  third.precompute(without, kDt);
+  for (int k = 0; k < 10; ++k) {
+    REQUIRE(second.step(resumed).ok());
+    REQUIRE(third.step(without).ok());
+  }
+  CHECK(resumed.positions() == whole.positions());
+  CHECK(resumed.velocities() == whole.velocities());
+  CHECK(second.contact_duals() == first.contact_duals());
+  CHECK((without.positions() - whole.positions()).cwiseAbs().maxCoeff() > 0);
+}
+
+TEST_CASE("contact in the iteration: set_contact_duals refuses what the term cannot hold") {
+  System s = cloth_over_ball(5, 0.5, 0);
+  Solver solver(in_solve_options(16, 10, massspring::Acceleration::None));
+  massspring::Points<double> u = massspring::Points<double>::Zero(s.num_points(), 3);
+  CHECK_THROWS_WITH(solver.set_contact_duals(u),
+                    "FastMassSpring: set_contact_duals() before precompute()");
+  solver.precompute(s, kDt);
+  CHECK_THROWS_WITH(solver.set_contact_duals(massspring::Points<double>::Zero(3, 3)),
+                    "FastMassSpring: set_contact_duals: 3 rows for a system of 25 points");
+  u(7, 1) = std::nan("");
+  CHECK_THROWS_WITH(solver.set_contact_duals(u),
+                    "FastMassSpring: set_contact_duals: row 7 is not finite");
+  // A pinned point: the term does not act on it. Nothing is changed by a refused call.
+  s.pin(4);
+  solver.precompute(s, kDt);
+  u.setZero();
+  u(3, 0) = 1e-3;
+  u(4, 2) = 1e-3;
+  CHECK_THROWS_WITH(solver.set_contact_duals(u),
+                    "FastMassSpring: set_contact_duals: row 4 is not zero, but the contact term "
+                    "does not act on point 4 (pinned, contact_weight 0 or no colliders)");
+  CHECK(solver.contact_duals().cwiseAbs().maxCoeff() == 0);
+  u(4, 2) = 0;
+  solver.set_contact_duals(u);
+  CHECK(solver.contact_duals() == u);
+  // contact_weight 0: no term, so only zeros are accepted.
+  Solver end_of_step(in_solve_options(0, 10, massspring::Acceleration::None));
+  end_of_step.precompute(s, kDt);
+  CHECK_THROWS(end_of_step.set_contact_duals(u));
+  end_of_step.set_contact_duals(massspring::Points<double>::Zero(s.num_points(), 3));
 }
 
 }  // namespace contact_projection_test

@@ -79,6 +79,30 @@ class ContactProjection {
   /// @brief True when the term acts this step.
   [[nodiscard]] bool active() const { return active_; }
 
+  /// @brief The dual variables u [m] into the rows of `u` (n x 3, one row per point of the
+  /// system); rows of points the term does not project are left as they are.
+  template <class Points>
+  void get_duals(Points& u) const {
+    for (int r = 0; r < int(weight_.size()); ++r)
+      if (projects_[std::size_t(r)])
+        u.row(point_[std::size_t(r)]) = dual_.template segment<3>(3 * Eigen::Index(r)).transpose();
+  }
+
+  /// @brief Sets the dual variables from the rows of `u` (n x 3). Returns -1, or (nothing set)
+  /// the first point the term does not project whose row is not zero.
+  template <class Points>
+  int set_duals(const Points& u) {
+    std::vector<unsigned char> acted(std::size_t(u.rows()), 0);
+    for (int r = 0; r < int(weight_.size()); ++r)
+      if (projects_[std::size_t(r)]) acted[std::size_t(point_[std::size_t(r)])] = 1;
+    for (Eigen::Index i = 0; i < u.rows(); ++i)
+      if (!acted[std::size_t(i)] && !u.row(i).isZero(0)) return int(i);
+    for (int r = 0; r < int(weight_.size()); ++r)
+      if (projects_[std::size_t(r)])
+        dual_.template segment<3>(3 * Eigen::Index(r)) = u.row(point_[std::size_t(r)]).transpose();
+    return -1;
+  }
+
   /// @brief The local step of the term at the iterate x: z = P(x + u), u <- x + u - z, and
   /// rhs0 = base + w (z - u - origin) on the term's rows (x unchanged); returns E_c at x [J].
   double apply(const Scalar* x, Vector<Scalar>& rhs0) {

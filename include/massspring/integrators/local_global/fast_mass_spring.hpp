@@ -121,6 +121,20 @@ class FastMassSpring {
   /// @brief Accelerated iterates replaced by the plain step because the energy rose (Chebyshev
   /// restarts, Anderson rejections), counted since construction.
   [[nodiscard]] std::size_t rejections() const { return rejections_; }
+  /// @brief The contact term's dual variables u [m] (local_global/contact_projection.hpp), one row
+  /// per point: what the next step's iteration starts from. Zero rows for points the term does
+  /// not act on (pinned points; every point with contact_weight 0 or without colliders). With
+  /// the positions and velocities they are all a step reads: a run saved with them and resumed
+  /// through set_contact_duals() continues bit for bit.
+  [[nodiscard]] PointsType contact_duals() const {
+    PointsType u = PointsType::Zero(reduced_.n, 3);
+    contact_.get_duals(u);
+    return u;
+  }
+  /// @brief Sets the contact term's dual variables (after precompute(); a factorization sets them
+  /// to 0 again). Throws Error, changing nothing, unless u has a finite row per point and a zero
+  /// row for each point the term does not act on.
+  void set_contact_duals(const PointsType& u);
 
  private:
   using Buffer = Vector<Scalar>;
@@ -395,6 +409,21 @@ void FastMassSpring<System, Cholesky_>::precompute(const System& system, Scalar 
   check_options();
   dt_ = dt;
   if (!build(system)) throw Error(factorization_message());
+}
+
+template <class System, class Cholesky_>
+void FastMassSpring<System, Cholesky_>::set_contact_duals(const PointsType& u) {
+  if (!factored_) throw Error("FastMassSpring: set_contact_duals() before precompute()");
+  if (u.rows() != reduced_.n)
+    throw Error(detail::message("FastMassSpring: set_contact_duals: ", u.rows(),
+                                " rows for a system of ", reduced_.n, " points"));
+  for (Eigen::Index i = 0; i < u.rows(); ++i)
+    if (!u.row(i).allFinite())
+      throw Error(detail::message("FastMassSpring: set_contact_duals: row ", i, " is not finite"));
+  if (const int i = contact_.set_duals(u); i >= 0)
+    throw Error(detail::message("FastMassSpring: set_contact_duals: row ", i,
+                                " is not zero, but the contact term does not act on point ", i,
+                                " (pinned, contact_weight 0 or no colliders)"));
 }
 
 template <class System, class Cholesky_>
