@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
   app.add_option("--iterations", iterations, "local-global iterations per step")
       ->check(CLI::PositiveNumber);
   app.add_option("--acceleration", acceleration,
-                 "FastMassSpringOptions::acceleration: none, chebyshev or anderson (not with --symplectic)")
+                 "FastMassSpringOptions::acceleration: none, chebyshev or anderson (not with "
+                 "--symplectic)")
       ->check(CLI::IsMember(ms::option_names<ms::Acceleration>()));
   app.add_option("--contact-weight", contact_weight,
                  "FastMassSpringOptions::contact_weight (0: contact at the end of the step; > 0: "
