@@ -104,7 +104,9 @@ class ContactProjection {
   }
 
   /// @brief The local step of the term at the iterate x: z = P(x + u), u <- x + u - z, and
-  /// rhs0 = base + w (z - u - origin) on the term's rows (x unchanged); returns E_c at x [J].
+  /// rhs0 = base + w (z - u - origin) on the term's rows (x unchanged); returns E_c at x [J]
+  /// when Energy (one more projection per point in contact), else 0.
+  template <bool Energy>
   double apply(const Scalar* x, Vector<Scalar>& rhs0) {
     double energy = 0;
     Scalar* b = rhs0.data();
@@ -134,8 +136,10 @@ class ContactProjection {
         u[c] = moved[c] - z[c];
         b_r[c] = b0_r[c] + w * (z[c] - u[c] - o[c]);
       }
-      Scalar p[3] = {xr[0], xr[1], xr[2]};
-      energy += project(r, p);
+      if constexpr (Energy) {
+        Scalar p[3] = {xr[0], xr[1], xr[2]};
+        energy += project(r, p);
+      }
     }
     return energy;
   }

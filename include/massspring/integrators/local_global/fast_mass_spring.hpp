@@ -267,7 +267,8 @@ class FastMassSpring {
   // is first projected out of them (contact_projection.hpp).
   template <bool Energy>
   MASSSPRING_NOINLINE double local_step(Scalar* x, Scalar* w) {
-    const double contact = contact_.active() ? contact_.apply(x, inertia_.rhs0) : 0.0;
+    const double contact =
+        contact_.active() ? contact_.template apply<Energy>(x, inertia_.rhs0) : 0.0;
     const double quadratic = contact + start_rhs<Energy>(x, w);
     return quadratic + springs_.template pass<true, Energy>(x, w, reduced_.nx);
   }
