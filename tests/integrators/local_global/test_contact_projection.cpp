@@ -266,10 +266,10 @@ TEST_CASE("contact in the iteration: set_contact_duals refuses what the term can
                     "FastMassSpring: set_contact_duals() before precompute()");
   solver.precompute(s, kDt);
   CHECK_THROWS_WITH(solver.set_contact_duals(massspring::Points<double>::Zero(3, 3)),
-                    "FastMassSpring: set_contact_duals: 3 rows for a system of 25 points");
+                    "FastMassSpring::set_contact_duals: expected one value per point (25), got 3");
   u(7, 1) = std::nan("");
   CHECK_THROWS_WITH(solver.set_contact_duals(u),
-                    "FastMassSpring: set_contact_duals: row 7 is not finite");
+                    "point 7: contact dual must be finite, got (0, nan, 0)");
   // A pinned point: the term does not act on it. Nothing is changed by a refused call.
   s.pin(4);
   solver.precompute(s, kDt);

@@ -415,12 +415,8 @@ void FastMassSpring<System, Cholesky_>::precompute(const System& system, Scalar 
 template <class System, class Cholesky_>
 void FastMassSpring<System, Cholesky_>::set_contact_duals(const PointsType& u) {
   if (!factored_) throw Error("FastMassSpring: set_contact_duals() before precompute()");
-  if (u.rows() != reduced_.n)
-    throw Error(detail::message("FastMassSpring: set_contact_duals: ", u.rows(),
-                                " rows for a system of ", reduced_.n, " points"));
-  for (Eigen::Index i = 0; i < u.rows(); ++i)
-    if (!u.row(i).allFinite())
-      throw Error(detail::message("FastMassSpring: set_contact_duals: row ", i, " is not finite"));
+  detail::require_rows("FastMassSpring::set_contact_duals", u.rows(), reduced_.n, "point");
+  detail::require_finite_rows("point", "contact dual", u);
   if (const int i = contact_.set_duals(u); i >= 0)
     throw Error(detail::message("FastMassSpring: set_contact_duals: row ", i,
                                 " is not zero, but the contact term does not act on point ", i,
