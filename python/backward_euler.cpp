@@ -19,13 +19,18 @@ void bind_backward_euler(py::module_& m) {
       .def_readwrite("iterations", &Options::iterations, "Newton: most iterations (>= 1).")
       .def_readwrite("tolerance", &Options::tolerance,
                      "Newton: stop when max |dx| <= tolerance (1 + max |x|).")
-      .def_readwrite("line_search", &Options::line_search, "Newton: backtracking line search.");
+      .def_readwrite("line_search", &Options::line_search, "Newton: backtracking line search.")
+      .def_readwrite("contact_weight", &Options::contact_weight,
+                     "Weight alpha of contact and friction inside the solve: alpha sqrt(m (m + "
+                     "h^2 k)) per point, k its springs' summed stiffness (0: at the end of the "
+                     "step; 1 suits dt = 1/30).");
 
   py::class_<Solver> c(m, "BackwardEuler",
                        "Implicit Euler on (M - h dF/dv - h^2 dF/dx), linearised or Newton.");
   c.def(py::init<>())
       .def(py::init<Options>(), py::arg("options"))
       .def_readwrite("options", &Solver::options, "The options (this solver's own).");
+  bind_contact_duals<Solver>(c);
   bind_integrator_calls<Solver>(m, c, [](Solver& s, System& system) { return s.step(system); });
 }
 

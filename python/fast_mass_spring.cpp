@@ -105,16 +105,8 @@ void bind_fast_mass_spring(py::module_& m) {
       .def_property_readonly(
           "chebyshev_rho", [](const Solver& s) { return double(s.chebyshev_rho()); },
           "The rho Chebyshev uses (options' or the estimate; 0 before it is estimated).")
-      .def_property_readonly("rejections", &Solver::rejections)
-      .def_property(
-          "contact_duals", [](const Solver& s) { return copy_array(s.contact_duals()); },
-          [](Solver& s, const py::handle& u) {
-            check_idle(&s, "contact_duals");
-            s.set_contact_duals(real_matrix(u, "contact_duals", 3));
-          },
-          "(n, 3) the contact term's dual variables [m] (contact_weight > 0), a copy: the state "
-          "the next step's iteration starts from. Assign a saved copy (after precompute) to "
-          "resume a run bit for bit.");
+      .def_property_readonly("rejections", &Solver::rejections);
+  bind_contact_duals<Solver>(c);
   bind_integrator_calls<Solver>(m, c, [](Solver& s, System& system) { return s.step(system); });
 }
 

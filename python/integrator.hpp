@@ -58,4 +58,20 @@ void bind_integrator_calls(py::module_& m, Class& c, Step step) {
       "not finite) is undone and reported (blew_up, finite).");
 }
 
+/// @brief The contact_duals property of an integrator with a contact term inside its solve
+/// (contact_duals() / set_contact_duals(); FastMassSpring, BackwardEuler): read a copy, assign
+/// after precompute.
+template <class Integrator, class Class>
+void bind_contact_duals(Class& c) {
+  c.def_property(
+      "contact_duals", [](const Integrator& s) { return copy_array(s.contact_duals()); },
+      [](Integrator& s, const py::handle& u) {
+        check_idle(&s, "contact_duals");
+        s.set_contact_duals(real_matrix(u, "contact_duals", 3));
+      },
+      "(n, 3) the contact term's dual variables [m] (contact_weight > 0), a copy: the state the "
+      "next step's solve starts from. Assign a saved copy (after precompute) to resume a run bit "
+      "for bit.");
+}
+
 }  // namespace massspring::python

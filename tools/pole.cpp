@@ -3,8 +3,8 @@
 // capsule collider turning at the same rate, whose friction carries the wound layers round.
 //
 //   massspring-pole [--out DIR] [--frames N] [--every K] [--dt S] [--turns-per-second F]
-//                   [--iterations N] [--acceleration NAME] [--contact-weight W] [--symplectic]
-//                   [--min-wound F]
+//                   [--integrator NAME] [--iterations N] [--acceleration NAME]
+//                   [--contact-weight W] [--min-wound F]
 //
 // Prints the ms per step, the deepest point inside the pole over the run (never more than 1e-9 of
 // the scene's diagonal: exit status 1 otherwise) and how much cloth is wound: the rows whose
@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   int frames = 2500, every = 25, iterations = 10;
   double contact_weight = 0;
   std::string acceleration = "none";
-  bool symplectic = false;
+  std::string integrator = "fast-mass-spring";
   double dt = 0.002, turns_per_second = 0.5, min_wound = 0;
   app.add_option("--out", out, "folder for frame_NNNNN.obj (none: no frames written)");
   app.add_option("--frames", frames, "steps to take")->check(CLI::PositiveNumber);
@@ -54,21 +54,39 @@ int main(int argc, char** argv) {
   app.add_option("--dt", dt, "time step [s]")->check(CLI::PositiveNumber);
   app.add_option("--turns-per-second", turns_per_second, "the pole's rate [1/s]")
       ->check(CLI::PositiveNumber);
-  app.add_option("--iterations", iterations, "local-global iterations per step")
+  app.add_option("--integrator", integrator,
+                 "fast-mass-spring, backward-euler, linearized-backward-euler or symplectic-euler")
+      ->check(CLI::IsMember(
+          {"fast-mass-spring", "backward-euler", "linearized-backward-euler", "symplectic-euler"}));
+  app.add_option("--iterations", iterations,
+                 "local-global iterations per step (fast-mass-spring), most Newton or contact "
+                 "iterations (backward-euler: give 20, its default)")
       ->check(CLI::PositiveNumber);
   app.add_option("--acceleration", acceleration,
-                 "FastMassSpringOptions::acceleration: none, chebyshev or anderson (not with "
-                 "--symplectic)")
+                 "FastMassSpringOptions::acceleration: none, chebyshev or anderson "
+                 "(fast-mass-spring only)")
       ->check(CLI::IsMember(ms::option_names<ms::Acceleration>()));
   app.add_option("--contact-weight", contact_weight,
-                 "FastMassSpringOptions::contact_weight (0: contact at the end of the step; > 0: "
-                 "inside the iteration, from the inertial prediction)")
+                 "the contact_weight of FastMassSpringOptions or BackwardEulerOptions (0: contact "
+                 "at the end of the step; > 0: inside the solve; fast-mass-spring then starts "
+                 "from the inertial prediction)")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--symplectic", symplectic, "SymplecticEuler instead of FastMassSpring");
   app.add_option("--min-wound", min_wound,
                  "exit 1 when fewer rows than this fraction of the closed form are wound")
       ->check(CLI::Range(0.0, 1.0));
   CLI11_PARSE(app, argc, argv);
+  const ms::IntegratorKind kind = ms::parse_integrator(integrator, ms::IntegratorNaming::Cli);
+  const bool fast = kind == ms::IntegratorKind::FastMassSpring;
+  if (!fast && acceleration != "none") {
+    std::fprintf(stderr, "massspring-pole: --acceleration applies to fast-mass-spring only\n");
+    return 1;
+  }
+  if (kind == ms::IntegratorKind::SymplecticEuler && contact_weight > 0) {
+    std::fprintf(stderr,
+                 "massspring-pole: --contact-weight applies to fast-mass-spring and "
+                 "backward-euler only\n");
+    return 1;
+  }
 
   try {
     // A 1 m x 0.8 m flag (31 x 25 points, Voronoi masses at 1 kg/m^2, k = 1000 N/m) hanging in
@@ -105,10 +123,23 @@ int main(int argc, char** argv) {
     solver.options.acceleration = ms::parse_option<ms::Acceleration>(acceleration);
     // The contact term's weight slows motion the start does not predict (options.hpp).
     if (contact_weight > 0) solver.options.initial_guess = ms::InitialGuess::Inertial;
-    if (symplectic)
+    ms::BackwardEuler<System> be;
+    be.options.mode = kind == ms::IntegratorKind::LinearizedBackwardEuler
+                          ? ms::BackwardEulerMode::Linearized
+                          : ms::BackwardEulerMode::Newton;
+    be.options.iterations = iterations;
+    be.options.contact_weight = contact_weight;
+    const auto step = [&] {
+      return fast                                          ? solver.step(sys)
+             : kind == ms::IntegratorKind::SymplecticEuler ? se.step(sys)
+                                                           : be.step(sys);
+    };
+    if (fast)
+      solver.precompute(sys, dt);
+    else if (kind == ms::IntegratorKind::SymplecticEuler)
       se.precompute(sys, dt);
     else
-      solver.precompute(sys, dt);
+      be.precompute(sys, dt);
 
     // The scene (cloth, pins at their start, the pole) beside the frames, for render.py --scene.
     // A folder that holds anything already is refused: nothing of another run is overwritten.
@@ -144,7 +175,7 @@ int main(int argc, char** argv) {
         sys.set_pin_target(i, c + R * (rest.row(i).transpose() - c));
       }
       const auto t0 = std::chrono::steady_clock::now();
-      const ms::StepReport report = symplectic ? se.step(sys) : solver.step(sys);
+      const ms::StepReport report = step();
       stepping += std::chrono::steady_clock::now() - t0;
       if (!report.ok()) {
         std::fprintf(stderr, "massspring-pole: step %d failed (not finite or not factorized)\n",

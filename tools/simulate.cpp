@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
                  "Shrink every rest length as l0(t) = l0(0) exp(-RATE t) [1/s] (0: never)")
       ->capture_default_str();
   // Options of one integrator (or one acceleration): refused with another (simulate/run.hpp).
-  std::vector<CLI::Option*> fms, chebyshev, anderson, be;
+  std::vector<CLI::Option*> fms, chebyshev, anderson, be, contact;
   fms.push_back(app.add_option("--iterations", iterations,
                                "fast-mass-spring: most local-global iterations per step")
                     ->capture_default_str());
@@ -187,12 +187,14 @@ int main(int argc, char** argv) {
   fms.push_back(app.add_option("--penalty-weight", penalty_weight,
                                "fast-mass-spring: penalty weight w for --pins penalty [N/m]")
                     ->capture_default_str());
-  fms.push_back(app.add_option("--contact-weight", contact_weight,
-                               "fast-mass-spring: weight alpha of contact and friction inside "
-                               "the iteration, relative to m / dt^2 (0: at the end of the step "
-                               "only; 16 suits cloth on obstacles at dt = 1/30, with "
-                               "--initial-guess inertial)")
-                    ->capture_default_str());
+  contact.push_back(
+      app.add_option("--contact-weight", contact_weight,
+                     "fast-mass-spring, backward-euler, linearized-backward-euler: weight "
+                     "alpha of contact and friction inside the solve (0: at the end of the "
+                     "step only). fast-mass-spring: relative to m / dt^2, 16 suits cloth on "
+                     "obstacles at dt = 1/30, with --initial-guess inertial; backward-euler: "
+                     "relative to sqrt(m (m + dt^2 k)) / dt^2, 1 suits")
+          ->capture_default_str());
   fms.push_back(
       app.add_option("--acceleration", c.acceleration,
                      "fast-mass-spring: none, chebyshev (Wang 2015) or anderson (Peng et al. "
@@ -366,7 +368,8 @@ int main(int argc, char** argv) {
     c.rho_given = chebyshev.front()->count() > 0;
     for (auto [list, names] :
          {std::pair{&fms, &c.given_fast_mass_spring}, std::pair{&chebyshev, &c.given_chebyshev},
-          std::pair{&anderson, &c.given_anderson}, std::pair{&be, &c.given_backward_euler}})
+          std::pair{&anderson, &c.given_anderson}, std::pair{&be, &c.given_backward_euler},
+          std::pair{&contact, &c.given_contact}})
       for (CLI::Option* o : *list)
         if (o->count() > 0) names->push_back(o->get_name());
     using simulate::parse_integer;

@@ -192,6 +192,9 @@ REFUSALS = [
      "--acceleration none)"),
     (["chain.json", "--integrator", "symplectic-euler", "--iterations", "5"],
      "--iterations: applies to --integrator fast-mass-spring only (this run: symplectic-euler)"),
+    (["chain.json", "--integrator", "forward-euler", "--contact-weight", "1"],
+     "--contact-weight: applies to --integrator fast-mass-spring, backward-euler or "
+     "linearized-backward-euler only (this run: forward-euler)"),
     (["chain.json", "--newton-tolerance", "1e-6"],
      "--newton-tolerance: applies to --integrator backward-euler only (this run: "
      "fast-mass-spring, --acceleration none)"),
@@ -646,6 +649,8 @@ def resume(simulate, source, work):
         (["contact.json"], ["--integrator", "forward-euler", "--dt", "0.0005"]),
         (["contact.json"], ["--integrator", "backward-euler"]),
         (["contact.json"], ["--integrator", "linearized-backward-euler"]),
+        (["contact.json"], ["--integrator", "backward-euler", "--contact-weight", "1"]),
+        (["contact.json"], ["--integrator", "linearized-backward-euler", "--contact-weight", "1"]),
         # self-collision: the state holds the surface and the thickness
         (["--generate", "cloth:8x6"], ["--self-collision", "0.01"]),
         # an XML scene's gravitational attraction, and a JSON scene's own gravity and dt
@@ -680,12 +685,15 @@ def resume(simulate, source, work):
               f"{args}: the resumed run numbers its frames 10..20")
     # A state whose contact dual variables do not fit the scene is refused before a file is
     # written, naming the key.
+    for k in (i for i, (_, o) in enumerate(cases) if "--contact-weight" in o):
+        with open(os.path.join(work, f"r{k}_state.json")) as handle:
+            saved = json.load(handle)
+        check(len(saved["run"]["contact_duals"]) == len(saved["positions"]) and
+              any(any(x != 0 for x in row) for row in saved["run"]["contact_duals"]),
+              f"{cases[k][1]}: the state does not hold the contact term's dual variables")
     k = next(i for i, (_, o) in enumerate(cases) if "--contact-weight" in o)
     with open(os.path.join(work, f"r{k}_state.json")) as handle:
         saved = json.load(handle)
-    check(len(saved["run"]["contact_duals"]) == len(saved["positions"]) and
-          any(any(x != 0 for x in row) for row in saved["run"]["contact_duals"]),
-          "the state does not hold the contact term's dual variables")
     for duals, message in ((saved["run"]["contact_duals"][:-1],
                             f"has {len(saved['positions']) - 1} rows for "
                             f"{len(saved['positions'])} points"),

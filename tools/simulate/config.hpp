@@ -42,7 +42,7 @@ struct Config {
   double tolerance = kFastMassSpring.tolerance;
   std::string pins = massspring::option_name(kFastMassSpring.pins);
   double penalty_weight = kFastMassSpring.penalty_weight;
-  double contact_weight = kFastMassSpring.contact_weight;
+  double contact_weight = kFastMassSpring.contact_weight;  // BackwardEuler's default is the same
   std::string acceleration = massspring::option_name(kFastMassSpring.acceleration);
   double chebyshev_rho = kFastMassSpring.chebyshev_rho;
   bool rho_given = false;
@@ -59,7 +59,7 @@ struct Config {
   std::string line_search = kBackwardEuler.line_search ? "on" : "off";
   // options given that belong to one integrator or acceleration
   std::vector<std::string> given_fast_mass_spring, given_chebyshev, given_anderson,
-      given_backward_euler;
+      given_backward_euler, given_contact;
   std::vector<double> force{0, 0, 0};
   std::vector<double> gravity{0, -9.8, 0};
   bool force_given = false, gravity_given = false;

@@ -163,6 +163,10 @@ Plan resolve(const Config& c, const Setup<System>& s) {
   refuse(c.given_anderson, "--acceleration anderson", fms && c.acceleration == "anderson");
   refuse(c.given_backward_euler, "--integrator backward-euler",
          p.kind == massspring::IntegratorKind::BackwardEuler);
+  refuse(c.given_contact,
+         "--integrator fast-mass-spring, backward-euler or linearized-backward-euler",
+         fms || p.kind == massspring::IntegratorKind::BackwardEuler ||
+             p.kind == massspring::IntegratorKind::LinearizedBackwardEuler);
 
   if (c.shrink > 0) {
     const auto m = std::size_t(s.system.num_springs());
@@ -186,6 +190,13 @@ Plan resolve(const Config& c, const Setup<System>& s) {
   }
   return p;
 }
+
+// The solvers with a contact term inside their solve (--contact-weight), whose dual variables a
+// saved state holds.
+template <class System, class Solver>
+inline constexpr bool has_contact_term =
+    std::is_same_v<Solver, massspring::FastMassSpring<System>> ||
+    std::is_same_v<Solver, massspring::BackwardEuler<System>>;
 
 // The solver, configured from the options.
 template <class System>
@@ -220,6 +231,7 @@ void configure(const Config& c, const Plan&, massspring::BackwardEuler<System>& 
   solver.options.iterations = c.newton_iterations;
   solver.options.tolerance = typename System::Scalar(c.newton_tolerance);
   solver.options.line_search = c.line_search == "on";
+  solver.options.contact_weight = typename System::Scalar(c.contact_weight);
 }
 
 template <class System, class Solver>
@@ -341,7 +353,7 @@ void save_state(const Config& c, const Setup<System>& s, const Plan& p, const So
       run["chebyshev_rho"] = solver.chebyshev_rho() > 0 ? double(solver.chebyshev_rho())
                                                         : double(std::numeric_limits<float>::min());
   // The contact term's dual variables (--contact-weight): the iteration starts from them.
-  if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
+  if constexpr (has_contact_term<System, Solver>)
     if (c.contact_weight > 0) {
       const auto u = solver.contact_duals();
       nlohmann::json rows = nlohmann::json::array();
@@ -499,10 +511,10 @@ inline int exit_status(const Config& c, const Plan& p, const Outcome& o, bool fa
 }
 
 // A saved state's contact dual variables, into the solver: one [x, y, z] per point, numbers.
-template <class System>
+template <class System, class Solver>
 void restore_duals(const Config& c, const Setup<System>& s, const nlohmann::json& rows,
-                   massspring::FastMassSpring<System>& solver) {
-  using Points = typename massspring::FastMassSpring<System>::PointsType;
+                   Solver& solver) {
+  using Points = typename Solver::PointsType;
   using Scalar = typename System::Scalar;
   if (rows.size() != std::size_t(s.system.num_points()))
     throw Error(c.scene + ": key \"run\": \"contact_duals\" has " + std::to_string(rows.size()) +
@@ -531,7 +543,7 @@ int loop(const Config& c, Setup<System>& s, const Plan& p, Solver& solver,
   configure<System>(c, p, solver);
   const std::string what = describe<System>(c, solver, integrator);
   const double precompute_ms = timed_precompute(solver, s.system, p.dt);
-  if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
+  if constexpr (has_contact_term<System, Solver>)
     if (p.saved_duals && c.contact_weight > 0) restore_duals(c, s, *p.saved_duals, solver);
   // Every check has passed: from here on files are written.
   RunFiles<System> files(c, s, p);

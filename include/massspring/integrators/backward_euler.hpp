@@ -4,13 +4,16 @@
 /// solved by Newton's method to a tolerance with a line search.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/detail/commit_step.hpp"
+#include "massspring/integrators/detail/contact_dual.hpp"
 #include "massspring/integrators/detail/jacobian_assembly.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/linear_solver.hpp"
@@ -43,6 +46,22 @@ struct BackwardEulerOptions {
   Scalar tolerance = Scalar(1e-10);
   /// @brief Newton: backtracking line search (default on).
   bool line_search = true;
+  /// @brief Weight alpha of contact inside the solve (dimensionless, finite, >= 0). 0 (the
+  /// default): contact and friction are the end-of-step response every integrator applies
+  /// (docs/contact.md). alpha > 0, for a system with colliders: each point that touches a
+  /// collider gets the weight w_i = alpha sqrt(m_i (m_i + h^2 k_i)) [kg] (k_i the summed stiffness
+  /// of its springs) on A's diagonal and the term w_i / (2 h^2) |x_i - (z_i - u_i)|^2 in the
+  /// incremental potential, with z_i = P(x_i + u_i)
+  /// its projection out of the colliders (normal push and Coulomb friction on the displacement
+  /// over the step) and u_i its scaled dual variable, updated at every iterate and kept from step
+  /// to step (the ADMM term of FastMassSpring: local_global/contact_projection.hpp). Converged,
+  /// the step is implicit Euler with Signorini's condition and Coulomb's law; alpha sets how fast
+  /// the dual converges, not where. Newton's convergence then also asks ADMM's residuals,
+  /// max_i |x_i - z_i| and the change of z_i over the iteration, divided by 1 - q (q the ratio of
+  /// successive residuals: the distance to the limit of a linear rate), to be <= tolerance
+  /// (1 + max |x|); Linearized solves its linear model with the term `iterations` times
+  /// at most, to the same test.
+  Scalar contact_weight = Scalar(0);
 };
 
 /// @brief Backward (implicit) Euler on the 3n x 3n system A = M - h dF/dv - h^2 dF/dx.
@@ -55,7 +74,8 @@ struct BackwardEulerOptions {
 /// each step assembles values into it and factorizes numerically.
 ///
 /// The system's collision handler, if any, acts on the end-of-step state before it is committed
-/// (contact/collision_handler.hpp).
+/// (contact/collision_handler.hpp); with options.contact_weight > 0 the colliders' contact and
+/// friction are inside the solve, and the end-of-step response only guarantees the normal push.
 ///
 /// Pinned points sit at their targets (velocity (target - x) / h): their rows and columns are the
 /// identity with a zero right-hand side.
@@ -86,6 +106,14 @@ class BackwardEuler {
     f_trial_.setZero(n, 3);
     moved_.setZero(n, 3);
     trial_moved_.setZero(n, 3);
+    dual_.setZero(n, 3);
+    weight_.setZero(n);
+    new_weight_.setZero(n);
+    target_.setZero(n, 3);
+    start_.setZero(n, 3);
+    start_moved_.setZero(n, 3);
+    rhs_.setZero(n, 3);
+    touches_.assign(std::size_t(n), 0);
     setup(system);
     ready_ = true;
   }
@@ -101,6 +129,8 @@ class BackwardEuler {
       throw Error(
           detail::message("BackwardEuler: iterations must be >= 1, got ", options.iterations));
     detail::require_number("BackwardEuler", "tolerance", double(options.tolerance), false);
+    detail::require_number("BackwardEuler", "contact_weight", double(options.contact_weight),
+                           false);
     StepReport report;
     if (system.num_points() == 0) {  // nothing moves; max over an empty residual is undefined
       report.converged = true;
@@ -117,6 +147,11 @@ class BackwardEuler {
     const PointsType& v0 = system.velocities();
     const bool newton = options.mode == BackwardEulerMode::Newton;
     const bool has_potential = newton && options.line_search && potential_objective(system);
+    contact_ = options.contact_weight > 0 && !system.colliders().empty();
+    if (contact_) {
+      system.colliders().begin_step(h);
+      contact_weights(system);
+    }
 
     x_ = x0 + h * v0;  // the inertial prediction: x + h v
     moved_.setZero();  // x' - (x + h v), accumulated: v' = v + moved / h keeps v exactly when
@@ -126,13 +161,34 @@ class BackwardEuler {
       x_.row(pinned[r]) = system.pin_targets().row(Eigen::Index(r));
       moved_.row(pinned[r]) = x_.row(pinned[r]) - x0.row(pinned[r]) - h * v0.row(pinned[r]);
     }
+    if (contact_ && !newton) {
+      start_ = x_;
+      start_moved_ = moved_;
+    }
 
-    const int iterations = newton ? options.iterations : 1;
+    // The linearised step with contact keeps its linear model: A and r at x + h v, the term's
+    // targets updated at each iterate, x = x + h v + (A + W)^-1 (r + W (target - x - h v)).
+    const int iterations = newton || contact_ ? options.iterations : 1;
+    Scalar last_contact_residual = 0;
     for (int it = 0; it < iterations; ++it) {
-      residual(system, x_, moved_, r_);
-      report.residual = double(r_.cwiseAbs().maxCoeff() / (h * h));
+      // ADMM converges linearly: with q the ratio of successive residuals, the iterate is within
+      // about residual / (1 - q) of the limit, which the tolerance test takes (infinite while the
+      // residual does not shrink).
+      Scalar contact_error = 0;
+      if (contact_) {
+        const Scalar residual = update_contact(system);
+        const Scalar q =
+            it > 0 && last_contact_residual > 0 ? residual / last_contact_residual : Scalar(0);
+        contact_error = q < 1 ? residual / (1 - q) : std::numeric_limits<Scalar>::infinity();
+        last_contact_residual = residual;
+      }
+      if (newton || it == 0) {
+        residual(system, x_, moved_, r_, newton);
+        report.residual = double(r_.cwiseAbs().maxCoeff() / (h * h));
+      }
       report.iterations = it + 1;
-      if (!solve(system, newton)) {
+      const bool solved = newton ? solve(system, true, x_, moved_, r_) : solve_linearized(system);
+      if (!solved) {
         report.finite = false;
         return report;
       }
@@ -141,23 +197,47 @@ class BackwardEuler {
       Flat(x_.data(), dx_.size()) += alpha * dx_;
       Flat(moved_.data(), dx_.size()) += alpha * dx_;
       const Scalar scale = 1 + x_.cwiseAbs().maxCoeff();
-      if (newton && alpha * dx_.cwiseAbs().maxCoeff() <= options.tolerance * scale) {
+      if ((newton || contact_) && alpha * dx_.cwiseAbs().maxCoeff() <= options.tolerance * scale &&
+          contact_error <= options.tolerance * scale) {
         report.converged = true;
         break;
       }
     }
-    // Newton tests its tolerance every iteration; the linearised step is one solve.
-    report.convergence = !newton            ? Convergence::NotTested
-                         : report.converged ? Convergence::Converged
-                                            : Convergence::NotConverged;
+    // Newton and the contact iteration test their tolerance every iteration; the linearised step
+    // without contact is one solve.
+    report.convergence = !newton && !contact_ ? Convergence::NotTested
+                         : report.converged   ? Convergence::Converged
+                                              : Convergence::NotConverged;
     if (has_potential) report.energy = double(objective(system, x_, moved_));
     v_ = v0 + moved_ / h;
-    detail::commit_step(system, x_, v_, h, report);
+    // Friction was the contact term's, inside the solve: not applied a second time.
+    detail::commit_step(system, x_, v_, h, report, !contact_);
     return report;
   }
 
   /// @brief The time step [s].
   [[nodiscard]] Scalar dt() const { return dt_; }
+
+  /// @brief The contact term's scaled dual variables u [m] (options.contact_weight), one row per
+  /// point, zero where no collider acts; the contact force on point i is -w_i u_i / h^2
+  /// [N]. Kept from step to step, so a run continued by another solver through
+  /// set_contact_duals() continues bit for bit. Zero after precompute().
+  [[nodiscard]] const PointsType& contact_duals() const { return dual_; }
+  /// @brief Sets the dual variables, taken at the current options.contact_weight (after
+  /// precompute()). Throws Error, changing nothing, before precompute(), for a wrong row count,
+  /// a value that is not finite, or a pinned point's row that is not zero.
+  void set_contact_duals(const PointsType& u) {
+    if (!ready_) throw Error("BackwardEuler: set_contact_duals() before precompute()");
+    detail::require_rows("BackwardEuler::set_contact_duals", u.rows(), dual_.rows(), "point");
+    detail::require_finite_rows("point", "contact dual", u);
+    const auto& pinned = assembly_.pinned_coordinates();
+    for (Eigen::Index i = 0; i < u.rows(); ++i)
+      if (pinned[std::size_t(3 * i)] && !u.row(i).isZero(0))
+        throw Error(detail::message("BackwardEuler: set_contact_duals: row ", i,
+                                    " is not zero, but point ", i, " is pinned"));
+    dual_ = u;
+    weight_.setZero();  // the next step's weights are the ones u was taken at
+  }
   /// @brief The factorization the last solve used (Cholesky unless A was indefinite or not
   /// symmetric).
   [[nodiscard]] LinearSolverPath last_solver_path() const { return solver_.path(); }
@@ -184,31 +264,124 @@ class BackwardEuler {
   }
 
   /// @brief r = h^2 F(x, v0 + moved/h) - M moved, with moved = x - x0 - h v0 kept exactly (not
-  /// recomputed from x); zero on pinned rows.
-  void residual(const System& system, const PointsType& x, const PointsType& moved, PointsType& r) {
+  /// recomputed from x); zero on pinned rows. With `with_contact` (and the term on), plus
+  /// w_i (target_i - x_i) on the points that touch.
+  void residual(const System& system, const PointsType& x, const PointsType& moved, PointsType& r,
+                bool with_contact = true) {
     const Scalar h = dt_;
     v_ = system.velocities() + moved / h;
     total_force(system, x, v_, f_);
     r = h * h * f_ - (moved.array().colwise() * system.masses().array()).matrix();
     for (int i : system.pinned()) r.row(i).setZero();
+    if (contact_ && with_contact)
+      for (Eigen::Index i = 0; i < x.rows(); ++i)
+        if (touches_[std::size_t(i)])
+          r.row(i) += weight_of(system, i) * (target_.row(i) - x.row(i));
   }
 
-  /// @brief dx = A^-1 r at x_ (definite projection in Newton mode when A is indefinite).
-  bool solve(const System& system, bool newton) {
-    v_ = system.velocities() + moved_ / dt_;
-    assembly_.assemble(system, x_, v_, dt_, false);
+  /// @brief dx = (A + W)^-1 rhs with A at (x, moved), W the contact term's weights on the points
+  /// that touch (definite projection in Newton mode when A is indefinite).
+  bool solve(const System& system, bool newton, const PointsType& x, const PointsType& moved,
+             PointsType& rhs) {
+    v_ = system.velocities() + moved / dt_;
+    assembly_.assemble(system, x, v_, dt_, false);
+    add_contact_weights(system);
     // Newton: a failed Cholesky means A is indefinite; its definite projection is cheaper and
     // descends, where a pivoting fallback would give a direction that may not.
     const bool projectable = newton && symmetric_;
     bool ok = solver_.factorize(assembly_.matrix(), symmetric_, !projectable);
     if (projectable && !ok) {
-      assembly_.assemble(system, x_, v_, dt_, true);
+      assembly_.assemble(system, x, v_, dt_, true);
+      add_contact_weights(system);
       ok = solver_.factorize(assembly_.matrix(), symmetric_);
     }
     if (!ok) return false;
-    const Flat r(r_.data(), dx_.size());
+    const Flat r(rhs.data(), dx_.size());
     solver_.solve(r, dx_);
     return dx_.allFinite();
+  }
+
+  /// @brief The linearised step's contact iteration: x + h v + (A + W)^-1 (r + W (target - x -
+  /// h v)), A and r at x + h v (r_ without the term), as the update dx from x_.
+  bool solve_linearized(const System& system) {
+    if (!contact_) return solve(system, false, x_, moved_, r_);
+    rhs_ = r_;
+    for (Eigen::Index i = 0; i < x_.rows(); ++i)
+      if (touches_[std::size_t(i)])
+        rhs_.row(i) += weight_of(system, i) * (target_.row(i) - start_.row(i));
+    if (!solve(system, false, start_, start_moved_, rhs_)) return false;
+    Flat(dx_.data(), dx_.size()) += Flat(start_.data(), dx_.size()) - Flat(x_.data(), dx_.size());
+    return true;
+  }
+
+  /// @brief The contact term's weight of point i [kg] this step.
+  Scalar weight_of(const System&, Eigen::Index i) const { return weight_(i); }
+
+  /// @brief This step's weights w_i = alpha sqrt(m_i (m_i + h^2 k_i)) [kg], k_i the summed
+  /// stiffness of point i's springs [N/m]: the geometric mean of the smallest and largest
+  /// curvature A can have at the point (its inertia alone, and with its springs), the ADMM
+  /// penalty that balances the two (Ghadimi et al. 2015, "Optimal parameter selection for the
+  /// alternating direction method of multipliers", section IV). The scaled duals u = lambda / w
+  /// are rescaled where a weight changed, so the forces lambda carry over.
+  void contact_weights(const System& system) {
+    const Scalar h2 = dt_ * dt_;
+    new_weight_.setZero();
+    const auto& springs = system.springs();
+    for (Eigen::Index e = 0; e < springs.rows(); ++e)
+      for (int end = 0; end < 2; ++end) new_weight_(springs(e, end)) += system.stiffness()(e);
+    for (Eigen::Index i = 0; i < new_weight_.size(); ++i) {
+      const Scalar m = system.masses()(i);
+      const Scalar w = options.contact_weight * std::sqrt(m * (m + h2 * new_weight_(i)));
+      if (weight_(i) > 0 && weight_(i) != w) dual_.row(i) *= weight_(i) / w;
+      weight_(i) = w;
+    }
+  }
+
+  /// @brief W on A's diagonal: w_i on the three rows of each point that touches.
+  void add_contact_weights(const System& system) {
+    if (!contact_) return;
+    for (std::size_t i = 0; i < touches_.size(); ++i)
+      if (touches_[i]) assembly_.add_to_diagonal(int(i), weight_of(system, Eigen::Index(i)));
+  }
+
+  /// @brief The contact term's local step at x_ for every point not pinned
+  /// (detail::contact_dual_update): targets, touches_ and the dual variables. Returns the larger
+  /// of ADMM's primal and dual residuals (Boyd et al. 2011, section 3.3) in position:
+  /// max_i |x_i - z_i| (the change of u_i) and max_i |z_i - z_i'|, z_i' the last iterate's.
+  Scalar update_contact(const System& system) {
+    const auto& pinned = assembly_.pinned_coordinates();
+    const Scalar* x0 = system.positions().data();
+    Scalar residual = 0;
+    for (Eigen::Index i = 0; i < x_.rows(); ++i) {
+      Scalar* u = dual_.data() + 3 * i;
+      if (pinned[std::size_t(3 * i)]) {
+        touches_[std::size_t(i)] = 0;
+        continue;
+      }
+      Scalar* target = target_.data() + 3 * i;
+      // The last iterate's z = target + u (x there when it touched nothing).
+      const Scalar u_before[3] = {u[0], u[1], u[2]};
+      const Scalar z_before[3] = {target[0] + u[0], target[1] + u[1], target[2] + u[2]};
+      const bool touches = detail::contact_dual_update(system.colliders(), x0 + 3 * i,
+                                                       x_.data() + 3 * i, u, dt_, target);
+      touches_[std::size_t(i)] = touches ? 1 : 0;
+      for (int c = 0; c < 3; ++c) {
+        residual = std::max(residual, std::abs(u[c] - u_before[c]));
+        residual = std::max(residual, std::abs(target[c] + u[c] - z_before[c]));
+      }
+    }
+    return residual;
+  }
+
+  /// @brief The contact term's part of the incremental potential at x,
+  /// sum_i w_i / (2 h^2) |x_i - target_i|^2 over the points that touch [J].
+  Scalar contact_energy(const System& system, const PointsType& x) const {
+    Scalar e = 0;
+    if (!contact_) return e;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      if (touches_[std::size_t(i)])
+        e += weight_of(system, i) * (x.row(i) - target_.row(i)).squaredNorm();
+    return e / (2 * dt_ * dt_);
   }
 
   /// @brief Incremental potential 1/(2h^2) |moved|_M^2 + E(x) + beta/(2h) |x - x0|^2.
@@ -226,7 +399,8 @@ class BackwardEuler {
   Scalar line_search(const System& system, bool has_potential) {
     const Flat r(r_.data(), dx_.size());
     const Scalar slope = r.dot(dx_);  // -h^2 times the directional derivative of the objective
-    const Scalar f0 = has_potential ? objective(system, x_, moved_) : r.squaredNorm();
+    const Scalar f0 = has_potential ? objective(system, x_, moved_) + contact_energy(system, x_)
+                                    : r.squaredNorm();
     Scalar alpha = 1;
     for (int k = 0; k < 40; ++k, alpha /= 2) {
       trial_ = x_;
@@ -235,7 +409,7 @@ class BackwardEuler {
       Flat(trial_moved_.data(), dx_.size()) += alpha * dx_;
       Scalar f1;
       if (has_potential) {
-        f1 = objective(system, trial_, trial_moved_);
+        f1 = objective(system, trial_, trial_moved_) + contact_energy(system, trial_);
         if (f1 <= f0 - Scalar(1e-4) * alpha * slope / (dt_ * dt_)) return alpha;
         // Near the solution the objective's rounding (~eps |E|) hides the decrease: accept a
         // full step whose change is within that rounding.
@@ -252,9 +426,14 @@ class BackwardEuler {
   }
 
   Scalar dt_ = 0;
-  bool ready_ = false, symmetric_ = true;
+  bool ready_ = false, symmetric_ = true, contact_ = false;
   Scalar drag_ = 0;
   PointsType x_, v_, f_, r_, trial_, f_trial_, moved_, trial_moved_;
+  // The contact term (options.contact_weight): dual variables u [m], targets z - u [m], which
+  // points touch; the linearised step's start x + h v, its displacement and right-hand side.
+  PointsType dual_, target_, start_, start_moved_, rhs_;
+  Vector<Scalar> weight_, new_weight_;  // w_i this step [kg]; scratch
+  std::vector<char> touches_;
   Vector<Scalar> dx_;
   detail::JacobianAssembly<System> assembly_;
   LinearSolver<Storage, Scalar> solver_;

@@ -59,6 +59,9 @@ enum class Kind {
   FastMassSpring,
   FastMassSpringChebyshev,
   FastMassSpringAnderson,
+  // BackwardEuler with contact inside its solve (options.contact_weight 1); not in kAll.
+  BackwardEulerLinearizedInSolve,
+  BackwardEulerNewtonInSolve,
 };
 const Kind kAll[] = {Kind::ForwardEuler,
                      Kind::SymplecticEuler,
@@ -87,6 +90,10 @@ const char* name(Kind k) {
       return "FastMassSpring(Chebyshev)";
     case Kind::FastMassSpringAnderson:
       return "FastMassSpring(Anderson)";
+    case Kind::BackwardEulerLinearizedInSolve:
+      return "BackwardEuler(Linearized, contact in the solve)";
+    case Kind::BackwardEulerNewtonInSolve:
+      return "BackwardEuler(Newton, contact in the solve)";
   }
   return "?";
 }
@@ -117,10 +124,15 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
     case Kind::RK4:
       return std::make_unique<StepperOf<massspring::RK4<System>>>();
     case Kind::BackwardEulerLinearized:
-    case Kind::BackwardEulerNewton: {
+    case Kind::BackwardEulerNewton:
+    case Kind::BackwardEulerLinearizedInSolve:
+    case Kind::BackwardEulerNewtonInSolve: {
       massspring::BackwardEulerOptions<double> o;
-      o.mode = k == Kind::BackwardEulerNewton ? massspring::BackwardEulerMode::Newton
-                                              : massspring::BackwardEulerMode::Linearized;
+      o.mode = k == Kind::BackwardEulerNewton || k == Kind::BackwardEulerNewtonInSolve
+                   ? massspring::BackwardEulerMode::Newton
+                   : massspring::BackwardEulerMode::Linearized;
+      if (k == Kind::BackwardEulerLinearizedInSolve || k == Kind::BackwardEulerNewtonInSolve)
+        o.contact_weight = 1;
       return std::make_unique<StepperOf<BE>>(o);
     }
     case Kind::FastMassSpring:
@@ -228,6 +240,14 @@ TEST_CASE(
     "1/30 s") {
   for (const Kind kind : {Kind::ForwardEuler, Kind::SymplecticEuler, Kind::RK4,
                           Kind::BackwardEulerLinearized, Kind::BackwardEulerNewton})
+    check_rest(kind);
+}
+
+// BackwardEuler with contact and friction inside its solve: the term's target is the point
+// itself, its dual holds gravity, and the particle stays put, with friction and without.
+TEST_CASE(
+    "colliders: a particle at rest on a plane stays there (BackwardEuler, contact in the solve)") {
+  for (const Kind kind : {Kind::BackwardEulerLinearizedInSolve, Kind::BackwardEulerNewtonInSolve})
     check_rest(kind);
 }
 

@@ -14,24 +14,24 @@
 
 #include <algorithm>
 #include <cmath>
-#include <massspring/contact/colliders/colliders.hpp>
-#include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>
 #include <massspring/integrators/local_global/option_names.hpp>
-#include <massspring/scene/cloth.hpp>
-#include <massspring/scene/make_system.hpp>
-#include <massspring/system/mass_spring_system.hpp>
 #include <string>
+
+#include "support/contact_scenes.hpp"
 
 namespace contact_projection_test {
 
-using System = massspring::MassSpringSystem<double, massspring::Sparse>;
+using System = massspring::test::ContactSystem;
 using Solver = massspring::FastMassSpring<System>;
-using V3 = Eigen::Vector3d;
-using Collider = massspring::contact::Collider<double>;
 
-constexpr double kG = 9.81;
-constexpr double kDt = 1.0 / 30;
+using massspring::test::cloth_over_ball;
+using massspring::test::discrete_slide;
+using massspring::test::incline_block;
+using massspring::test::incline_slide;
+using massspring::test::Strain;
+using massspring::test::strain_of;
+constexpr double kDt = massspring::test::kContactDt;
 
 massspring::FastMassSpringOptions<double> in_solve_options(double alpha, int iterations,
                                                            massspring::Acceleration acceleration) {
@@ -42,77 +42,6 @@ massspring::FastMassSpringOptions<double> in_solve_options(double alpha, int ite
   o.acceleration = acceleration;
   o.chebyshev_rho = 0.5;  // fixed: the estimate is not what is tested here
   return o;
-}
-
-// Two points 0.1 m apart along z, joined by a spring at its rest length, on the plane through
-// the origin with normal n = (sin t, cos t, 0), friction mu, under gravity (0, -g, 0).
-System incline_block(double theta, double mu) {
-  massspring::Points<double> p(2, 3);
-  p.row(0) = V3(0, 0, 0).transpose();
-  p.row(1) = V3(0, 0, 0.1).transpose();
-  massspring::Edges e(1, 2);
-  e << 0, 1;
-  System s(p, e, 0.5, 100.0);
-  s.add_force(massspring::Gravity<double>(V3(0, -kG, 0)));
-  const V3 n(std::sin(theta), std::cos(theta), 0);
-  s.colliders()[s.add_collider(Collider::plane(V3::Zero(), n))].set_friction(mu);
-  return s;
-}
-
-// Distance slid downhill by point 0 after `steps` steps.
-double slide(System& s, Solver& solver, double theta, int steps) {
-  const V3 down(std::cos(theta), -std::sin(theta), 0);
-  const V3 start = s.positions().row(0).transpose();
-  solver.precompute(s, kDt);
-  for (int k = 0; k < steps; ++k) REQUIRE(solver.step(s).ok());
-  return (s.positions().row(0).transpose() - start).dot(down);
-}
-
-// Oracle: implicit Euler with Coulomb friction moves a body under constant forces by
-// s_N = a h^2 N (N + 1) / 2 after N steps from rest (x advances by the new velocity, which grows
-// by h a per step), a = g (sin t - mu cos t).
-double discrete_slide(double theta, double mu, int steps) {
-  const double a = kG * (std::sin(theta) - mu * std::cos(theta));
-  return a * kDt * kDt * steps * (steps + 1) / 2;
-}
-
-// The 2 m x 2 m cloth of the drape benchmark (1.9 kg, k = 1000 N/m, one diagonal per cell),
-// `n` x `n` points, held flat 5 cm above a ball of radius 0.5 m at the origin (friction `mu`,
-// turning at `omega` rad/s about +y), over a floor at y = -1.
-System cloth_over_ball(int n, double mu, double omega) {
-  massspring::ClothOptions o;
-  o.columns = n;
-  o.rows = n;
-  o.width = 2;
-  o.height = 2;
-  o.stiffness = 1000;
-  o.mass = 1.9 / (n * n);
-  o.shear = massspring::ClothShear::One;
-  o.pins = massspring::ClothPins::None;
-  o.plane = massspring::ClothPlane::Horizontal;
-  o.center = V3(0, 0.55, 0);
-  System s = massspring::make_system<System>(massspring::make_cloth(o));
-  s.add_force(massspring::Gravity<double>(V3(0, -kG, 0)));
-  auto& ball = s.colliders()[s.add_collider(Collider::sphere(V3::Zero(), 0.5))];
-  ball.set_friction(mu).set_angular_velocity(V3(0, omega, 0));
-  s.colliders()[s.add_collider(Collider::plane(V3(0, -1, 0), V3(0, 1, 0)))].set_friction(mu);
-  return s;
-}
-
-struct Strain {
-  double mean = 0, max = 0;
-};
-Strain strain_of(const System& s) {
-  Strain r;
-  for (int e = 0; e < s.num_springs(); ++e) {
-    const double length =
-        (s.positions().row(s.springs()(e, 0)) - s.positions().row(s.springs()(e, 1))).norm();
-    const double strain = std::abs(length / s.rest_lengths()(e) - 1);
-    r.mean += strain;
-    r.max = std::max(r.max, strain);
-  }
-  r.mean /= s.num_springs();
-  return r;
 }
 
 TEST_CASE(
@@ -126,7 +55,7 @@ TEST_CASE(
     CAPTURE(std::string(massspring::option_name(acceleration)));
     System s = incline_block(theta, mu);
     Solver solver(in_solve_options(1, 10, acceleration));
-    const double slid = slide(s, solver, theta, steps);
+    const double slid = incline_slide(s, solver, theta, steps);
     CHECK(std::abs(slid / discrete_slide(theta, mu, steps) - 1) <= 0.02);
   }
 }
@@ -159,7 +88,7 @@ TEST_CASE(
     CAPTURE(alpha);
     System s = incline_block(theta, mu);
     Solver solver(in_solve_options(alpha, 400, massspring::Acceleration::None));
-    const double slid = slide(s, solver, theta, steps);
+    const double slid = incline_slide(s, solver, theta, steps);
     CHECK(std::abs(slid / discrete_slide(theta, mu, steps) - 1) <= 1e-8);
   }
 }
@@ -196,19 +125,11 @@ double lag_behind_ball(massspring::Acceleration acceleration, int seconds) {
   Solver solver(in_solve_options(16, 10, acceleration));
   solver.precompute(s, kDt);
   for (int k = 0; k < 30 * seconds; ++k) REQUIRE(solver.step(s).ok());
-  double difference = 0, surface = 0;
   int resting = 0;
-  for (int i = 0; i < s.num_points(); ++i) {
-    const V3 x = s.positions().row(i).transpose();
-    if (!(x.norm() < 0.51 && x.y() > 0.2)) continue;
-    const V3 u = V3(0, omega, 0).cross(x);
-    difference += (s.velocities().row(i).transpose() - u).norm();
-    surface += u.norm();
-    ++resting;
-  }
+  const double lag = massspring::test::lag_behind_surface(s, omega, resting);
   CAPTURE(resting);
   REQUIRE(resting > 100);
-  return difference / surface;
+  return lag;
 }
 
 // Dropped on the turning ball, the cloth lands flat and is carried up to speed by friction alone.
@@ -227,35 +148,10 @@ TEST_CASE(
   CHECK(lag_behind_ball(massspring::Acceleration::Anderson, 2) <= 0.05);
 }
 
-// The dual variables are the state the term carries from step to step: a run stopped after 10
-// steps and continued by a new solver from the positions, velocities and duals gives the
-// uninterrupted run's 20 steps bit for bit; without the duals it does not.
+// The duals carry the term from step to step (support/contact_scenes.hpp).
 TEST_CASE("contact in the iteration: a run resumed with its dual variables continues bit for bit") {
-  const auto options = in_solve_options(16, 10, massspring::Acceleration::None);
-  System whole = cloth_over_ball(21, 0.5, 1);
-  Solver first(options);
-  first.precompute(whole, kDt);
-  for (int k = 0; k < 10; ++k) REQUIRE(first.step(whole).ok());
-  const massspring::Points<double> duals = first.contact_duals();
-  REQUIRE(duals.rows() == whole.num_points());
-  CHECK(duals.cwiseAbs().maxCoeff() > 0);  // the cloth rests on the ball: the term acts
-  System resumed = whole, without = whole;
-  for (int k = 0; k < 10; ++k) REQUIRE(first.step(whole).ok());
-
-  Solver second(options), third(options);
-  second.precompute(resumed, kDt);
-  CHECK(second.contact_duals().cwiseAbs().maxCoeff() == 0);  // a factorization starts from 0
-  second.set_contact_duals(duals);
-  CHECK(second.contact_duals() == duals);
-  third.precompute(without, kDt);
-  for (int k = 0; k < 10; ++k) {
-    REQUIRE(second.step(resumed).ok());
-    REQUIRE(third.step(without).ok());
-  }
-  CHECK(resumed.positions() == whole.positions());
-  CHECK(resumed.velocities() == whole.velocities());
-  CHECK(second.contact_duals() == first.contact_duals());
-  CHECK((without.positions() - whole.positions()).cwiseAbs().maxCoeff() > 0);
+  massspring::test::check_resume_with_duals<Solver>(
+      in_solve_options(16, 10, massspring::Acceleration::None), 21);
 }
 
 TEST_CASE("contact in the iteration: set_contact_duals refuses what the term cannot hold") {

@@ -117,6 +117,12 @@ class JacobianAssembly {
           "emit the same entries at every call)");
   }
 
+  /// @brief Adds w to the three diagonal entries of point i (not pinned) of the assembled A.
+  void add_to_diagonal(int i, Scalar w) {
+    Scalar* values = m_.values();
+    for (int a = 0; a < 3; ++a) values[diagonal_[std::size_t(3 * i + a)]] += w;
+  }
+
   [[nodiscard]] const Matrix& matrix() const { return m_.a; }
   /// @brief 1 for the coordinates of pinned points.
   [[nodiscard]] const std::vector<char>& pinned_coordinates() const { return pinned_; }

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "massspring/contact/colliders/collider_set.hpp"
+#include "massspring/integrators/detail/contact_dual.hpp"
 #include "massspring/integrators/local_global/reduced_system.hpp"
 #include "massspring/types.hpp"
 
@@ -122,21 +123,11 @@ class ContactProjection {
         for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (xr[c] - o[c]);
         continue;
       }
-      Scalar* u = dual + 3 * r;
-      Scalar z[3] = {xr[0] + u[0], xr[1] + u[1], xr[2] + u[2]};
-      const Scalar moved[3] = {z[0], z[1], z[2]};
-      colliders_->project(x_start_ + 3 * point_[std::size_t(r)], z, dt_);
-      if (z[0] == moved[0] && z[1] == moved[1] && z[2] == moved[2]) {
-        // Touches nothing: z = x + u, so u becomes 0 and the term is w x.
-        u[0] = u[1] = u[2] = 0;
-        for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (xr[c] - o[c]);
-        continue;
-      }
-      for (int c = 0; c < 3; ++c) {
-        u[c] = moved[c] - z[c];
-        b_r[c] = b0_r[c] + w * (z[c] - u[c] - o[c]);
-      }
-      if constexpr (Energy) {
+      Scalar target[3];
+      const bool touches = detail::contact_dual_update(
+          *colliders_, x_start_ + 3 * point_[std::size_t(r)], xr, dual + 3 * r, dt_, target);
+      for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (target[c] - o[c]);
+      if (Energy && touches) {
         Scalar p[3] = {xr[0], xr[1], xr[2]};
         energy += project(r, p);
       }
