@@ -58,10 +58,11 @@ int main(int argc, char** argv) {
                  "fast-mass-spring, backward-euler, linearized-backward-euler or symplectic-euler")
       ->check(CLI::IsMember(
           {"fast-mass-spring", "backward-euler", "linearized-backward-euler", "symplectic-euler"}));
-  app.add_option("--iterations", iterations,
-                 "local-global iterations per step (fast-mass-spring), most Newton or contact "
-                 "iterations (backward-euler: give 20, its default)")
-      ->check(CLI::PositiveNumber);
+  CLI::Option* o_iterations =
+      app.add_option("--iterations", iterations,
+                     "local-global iterations per step (fast-mass-spring, default 10); most "
+                     "Newton or contact iterations (backward-euler: default its own, 20)")
+          ->check(CLI::PositiveNumber);
   app.add_option("--acceleration", acceleration,
                  "FastMassSpringOptions::acceleration: none, chebyshev or anderson "
                  "(fast-mass-spring only)")
@@ -127,7 +128,7 @@ int main(int argc, char** argv) {
     be.options.mode = kind == ms::IntegratorKind::LinearizedBackwardEuler
                           ? ms::BackwardEulerMode::Linearized
                           : ms::BackwardEulerMode::Newton;
-    be.options.iterations = iterations;
+    if (o_iterations->count() > 0) be.options.iterations = iterations;
     be.options.contact_weight = contact_weight;
     const auto step = [&] {
       return fast                                          ? solver.step(sys)

@@ -319,9 +319,10 @@ class BackwardEuler {
 
   /// @brief This step's weights w_i = alpha sqrt(m_i (m_i + h^2 k_i)) [kg], k_i the summed
   /// stiffness of point i's springs [N/m]: the geometric mean of the smallest and largest
-  /// curvature A can have at the point (its inertia alone, and with its springs), the ADMM
-  /// penalty that balances the two (Ghadimi et al. 2015, "Optimal parameter selection for the
-  /// alternating direction method of multipliers", section IV). The scaled duals u = lambda / w
+  /// curvature A can have at the point (its inertia alone, and with its springs), after the
+  /// sqrt(lambda_min lambda_max) penalty of Ghadimi et al. 2015 ("Optimal parameter selection for
+  /// the alternating direction method of multipliers (ADMM): quadratic problems", IEEE TAC),
+  /// which balances ADMM's two residuals. The scaled duals u = lambda / w
   /// are rescaled where a weight changed, so the forces lambda carry over.
   void contact_weights(const System& system) {
     const Scalar h2 = dt_ * dt_;
