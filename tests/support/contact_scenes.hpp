@@ -49,6 +49,21 @@ double incline_slide(ContactSystem& s, Solver& solver, double theta, int steps) 
   return (s.positions().row(0).transpose() - start).dot(down);
 }
 
+/// The largest coordinate change [m] of an incline_block's points from where they start, over
+/// `steps` steps of a solver with precompute() and step() (NaN when a step fails): what static
+/// friction must keep at 0.
+template <class Solver>
+double incline_hold(ContactSystem& s, Solver& solver, int steps) {
+  const Points<double> x0 = s.positions();
+  solver.precompute(s, kContactDt);
+  double moved = 0;
+  for (int k = 0; k < steps; ++k) {
+    if (!solver.step(s).ok()) return std::nan("");
+    moved = std::max(moved, (s.positions() - x0).cwiseAbs().maxCoeff());
+  }
+  return moved;
+}
+
 /// Oracle: implicit Euler with Coulomb friction moves a body under constant forces by
 /// s_N = a h^2 N (N + 1) / 2 after N steps from rest (x advances by the new velocity, which grows
 /// by h a per step), a = g (sin t - mu cos t).
