@@ -4,15 +4,17 @@
 // pinned, centre at (0, 0.55, 0)) with its cells split as CreatePatch splits them; a sphere
 // collider (r 0.5 m at the origin) and a floor plane (y = -1), friction 0.5 on both; gravity as a
 // force term. FastMassSpring with 10 iterations from the inertial prediction
-// (InitialGuess::Inertial) and the contact term inside the iteration (contact_weight = 16),
-// one thread. Self-collision (thickness 4 mm, friction 0.5) with --self-collision.
+// (InitialGuess::Inertial), Anderson acceleration and the contact term inside the iteration
+// (contact_weight = 1), one thread. Self-collision (thickness 4 mm, friction 0.5) with
+// --self-collision.
 //
 // It drops the cloth, runs the frames (one step each) and prints the figures of
 // support/drape_figures.hpp; the time is the step alone, CPU time.
 //
 //   massspring_drape [--fps 30 | 60 (default 30)] [--self-collision] [--seconds S (default 3)]
-//                    [--crossings] [--contact-weight W (default 16; 0: contact only at the step's
-//                    end, the library's default)] [--no-surface]
+//                    [--crossings] [--contact-weight W (default 1; 0: contact only at the step's
+//                    end, the library's default)] [--plain (no Anderson acceleration)]
+//                    [--no-surface]
 //
 // --no-surface removes the surface make_system gives the cloth, and with it the end-of-step
 // surface pass (contact/response/surface_contact.hpp: the cloth's edges and faces against the
@@ -67,7 +69,8 @@ int main(int argc, char** argv) {
   double seconds = 3;
   int fps = 30;
   bool self_collision = false;
-  double contact_weight = 16;
+  double contact_weight = 1;
+  bool anderson = true;
   bool surface = true;
   drape::Watch watch;
   // The options of this program; drape::parse() takes --seconds and --crossings.
@@ -76,6 +79,8 @@ int main(int argc, char** argv) {
       self_collision = true;
     } else if (arg == "--no-surface") {
       surface = false;
+    } else if (arg == "--plain") {
+      anderson = false;
     } else if (arg == "--contact-weight" && next) {
       contact_weight = std::atof(next);
       ++a;
@@ -93,8 +98,8 @@ int main(int argc, char** argv) {
   if (!parsed || (self_collision && !surface)) {
     std::fprintf(stderr,
                  "usage: massspring_drape [--fps N > 0 (default 30)] [--self-collision] "
-                 "[--seconds S > 0] [--crossings] [--contact-weight W >= 0 (default 16)] "
-                 "[--no-surface (not with --self-collision)]\n");
+                 "[--seconds S > 0] [--crossings] [--contact-weight W >= 0 (default 1)] "
+                 "[--plain] [--no-surface (not with --self-collision)]\n");
     return 2;
   }
   const double dt = 1.0 / fps;
@@ -107,6 +112,7 @@ int main(int argc, char** argv) {
   fms.options.iterations = 10;
   fms.options.initial_guess = massspring::InitialGuess::Inertial;
   fms.options.contact_weight = contact_weight;
+  if (anderson) fms.options.acceleration = massspring::Acceleration::Anderson;
   fms.precompute(s, dt);
 
   drape::FrameTimer timer;
@@ -121,9 +127,10 @@ int main(int argc, char** argv) {
   ok = ok && s.positions().allFinite();
   char engine[160];
   std::snprintf(engine, sizeof engine,
-                "massspring FastMassSpring, %d points, %d springs, %d triangles, 10 iterations, "
+                "massspring FastMassSpring, %d points, %d springs, %d triangles, 10 iterations%s, "
                 "contact_weight %g, %s",
-                int(s.num_points()), s.num_springs(), int(triangles.rows()), contact_weight,
+                int(s.num_points()), s.num_springs(), int(triangles.rows()),
+                anderson ? " (Anderson)" : "", contact_weight,
                 self_collision ? "self-collision on (4 mm, 0.5)"
                 : surface      ? "self-collision off"
                                : "no surface (point contact only)");

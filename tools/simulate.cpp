@@ -191,9 +191,9 @@ int main(int argc, char** argv) {
       app.add_option("--contact-weight", contact_weight,
                      "fast-mass-spring, backward-euler, linearized-backward-euler: weight "
                      "alpha of contact and friction inside the solve (0: at the end of the "
-                     "step only). fast-mass-spring: relative to m / dt^2, 16 suits cloth on "
-                     "obstacles at dt = 1/30, with --initial-guess inertial; backward-euler: "
-                     "relative to sqrt(m (m + dt^2 k)) / dt^2, 1 suits")
+                     "step only), relative to each point's sqrt(m (m + dt^2 k)) / dt^2 (k its "
+                     "springs' summed stiffness). 1 suits at dt = 1/30: backward-euler, and "
+                     "fast-mass-spring with --acceleration anderson --initial-guess inertial")
           ->capture_default_str());
   fms.push_back(
       app.add_option("--acceleration", c.acceleration,

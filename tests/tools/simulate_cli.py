@@ -644,7 +644,7 @@ def resume(simulate, source, work):
         (["contact.json"], []),
         (["contact.json"], ["--acceleration", "chebyshev", "--iterations", "10"]),
         # contact inside the iteration: the state holds the contact term's dual variables
-        (["contact.json"], ["--contact-weight", "16", "--iterations", "10"]),
+        (["contact.json"], ["--contact-weight", "1", "--acceleration", "anderson", "--iterations", "10"]),
         (["contact.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),
         (["contact.json"], ["--integrator", "forward-euler", "--dt", "0.0005"]),
         (["contact.json"], ["--integrator", "backward-euler"]),
@@ -702,7 +702,7 @@ def resume(simulate, source, work):
         with open(os.path.join(work, "bad_duals.json"), "w") as handle:
             json.dump(saved, handle)
         before = snapshot(work)
-        result = run(simulate, ["bad_duals.json", "--contact-weight", "16", "--csv", "bad.csv"],
+        result = run(simulate, ["bad_duals.json", "--contact-weight", "1", "--csv", "bad.csv"],
                      work)
         check(result.returncode == 1 and 'bad_duals.json: key "run": "contact_duals" ' + message
               in result.stderr, f"bad contact_duals: {result.returncode} {result.stderr!r}")

@@ -317,22 +317,12 @@ class BackwardEuler {
   /// @brief The contact term's weight of point i [kg] this step.
   Scalar weight_of(const System&, Eigen::Index i) const { return weight_(i); }
 
-  /// @brief This step's weights w_i = alpha sqrt(m_i (m_i + h^2 k_i)) [kg], k_i the summed
-  /// stiffness of point i's springs [N/m]: the geometric mean of the smallest and largest
-  /// curvature A can have at the point (its inertia alone, and with its springs), after the
-  /// sqrt(lambda_min lambda_max) penalty of Ghadimi et al. 2015 ("Optimal parameter selection for
-  /// the alternating direction method of multipliers (ADMM): quadratic problems", IEEE TAC),
-  /// which balances ADMM's two residuals. The scaled duals u = lambda / w
-  /// are rescaled where a weight changed, so the forces lambda carry over.
+  /// @brief This step's weights (detail::contact_weights) into weight_. The scaled duals
+  /// u = lambda / w are rescaled where a weight changed, so the forces lambda carry over.
   void contact_weights(const System& system) {
-    const Scalar h2 = dt_ * dt_;
-    new_weight_.setZero();
-    const auto& springs = system.springs();
-    for (Eigen::Index e = 0; e < springs.rows(); ++e)
-      for (int end = 0; end < 2; ++end) new_weight_(springs(e, end)) += system.stiffness()(e);
+    detail::contact_weights(system, options.contact_weight, dt_ * dt_, new_weight_);
     for (Eigen::Index i = 0; i < new_weight_.size(); ++i) {
-      const Scalar m = system.masses()(i);
-      const Scalar w = options.contact_weight * std::sqrt(m * (m + h2 * new_weight_(i)));
+      const Scalar w = new_weight_(i);
       if (weight_(i) > 0 && weight_(i) != w) dual_.row(i) *= weight_(i) / w;
       weight_(i) = w;
     }

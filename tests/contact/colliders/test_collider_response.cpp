@@ -59,9 +59,11 @@ enum class Kind {
   FastMassSpring,
   FastMassSpringChebyshev,
   FastMassSpringAnderson,
-  // BackwardEuler with contact inside its solve (options.contact_weight 1); not in kAll.
+  // BackwardEuler with contact inside its solve and FastMassSpring (Anderson) with contact inside
+  // its iteration (options.contact_weight 1); not in kAll.
   BackwardEulerLinearizedInSolve,
   BackwardEulerNewtonInSolve,
+  FastMassSpringInSolve,
 };
 const Kind kAll[] = {Kind::ForwardEuler,
                      Kind::SymplecticEuler,
@@ -94,6 +96,8 @@ const char* name(Kind k) {
       return "BackwardEuler(Linearized, contact in the solve)";
     case Kind::BackwardEulerNewtonInSolve:
       return "BackwardEuler(Newton, contact in the solve)";
+    case Kind::FastMassSpringInSolve:
+      return "FastMassSpring(Anderson, contact in the iteration)";
   }
   return "?";
 }
@@ -137,7 +141,8 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
     }
     case Kind::FastMassSpring:
     case Kind::FastMassSpringChebyshev:
-    case Kind::FastMassSpringAnderson: {
+    case Kind::FastMassSpringAnderson:
+    case Kind::FastMassSpringInSolve: {
       massspring::FastMassSpringOptions<double> o;
       o.iterations = fms_iterations;
       // A fixed rho: the estimate (100 trial iterations) returns 0 ("none") when the plain
@@ -152,6 +157,7 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
       o.acceleration = k == Kind::FastMassSpring            ? massspring::Acceleration::None
                        : k == Kind::FastMassSpringChebyshev ? massspring::Acceleration::Chebyshev
                                                             : massspring::Acceleration::Anderson;
+      if (k == Kind::FastMassSpringInSolve) o.contact_weight = 1;
       return std::make_unique<StepperOf<FMS>>(o);
     }
   }
@@ -243,11 +249,14 @@ TEST_CASE(
     check_rest(kind);
 }
 
-// BackwardEuler with contact and friction inside its solve: the term's target is the point
-// itself, its dual holds gravity, and the particle stays put, with friction and without.
+// BackwardEuler and FastMassSpring with contact and friction inside their solves: the term's
+// target is the point itself, its dual holds gravity, and the particle stays put, with friction
+// and without.
 TEST_CASE(
-    "colliders: a particle at rest on a plane stays there (BackwardEuler, contact in the solve)") {
-  for (const Kind kind : {Kind::BackwardEulerLinearizedInSolve, Kind::BackwardEulerNewtonInSolve})
+    "colliders: a particle at rest on a plane stays there (BackwardEuler and FastMassSpring, "
+    "contact in the solve)") {
+  for (const Kind kind : {Kind::BackwardEulerLinearizedInSolve, Kind::BackwardEulerNewtonInSolve,
+                          Kind::FastMassSpringInSolve})
     check_rest(kind);
 }
 

@@ -8,7 +8,8 @@
 // - a cloth dropped on a ball over a floor never has a point inside the ball at a step end, and
 //   rests on it with little stretch;
 // - a cloth dropped on a ball that turns about the vertical turns with it (friction): to 5% after
-//   3 s, and after 2 s with Anderson acceleration;
+//   2 s;
+// The setting is one: contact_weight 1 with Anderson acceleration.
 // - the dual variables saved and restored resume a run bit for bit.
 #include <doctest/doctest.h>
 
@@ -65,7 +66,7 @@ TEST_CASE(
     "1 s at dt = 1/30, 10 iterations") {
   const double theta = 30 * M_PI / 180, mu = 0.7;  // mu > tan 30 = 0.577
   System s = incline_block(theta, mu);
-  Solver solver(in_solve_options(16, 10, massspring::Acceleration::None));
+  Solver solver(in_solve_options(1, 10, massspring::Acceleration::Anderson));
   CHECK(massspring::test::incline_hold(s, solver, 30) <= 1e-9);
 }
 
@@ -90,7 +91,7 @@ TEST_CASE(
     "contact in the iteration: a cloth dropped on a ball at dt = 1/30 rests on it, never "
     "inside, with mean strain <= 2% and max <= 15%") {
   System s = cloth_over_ball(41, 0.5, 0);
-  Solver solver(in_solve_options(16, 10, massspring::Acceleration::None));
+  Solver solver(in_solve_options(1, 10, massspring::Acceleration::Anderson));
   solver.precompute(s, kDt);
   double nearest = 1e9;  // the smallest distance of a point from the ball's centre
   for (int k = 0; k < 90; ++k) {
@@ -109,13 +110,12 @@ TEST_CASE(
 }
 
 // Dropped on a ball turning at 1 rad/s about the vertical (mu = 0.5) and run for `seconds` with
-// contact_weight 16 and 10 iterations: the points resting on the ball's upper half (within 1 cm
-// of its surface), their velocity against the surface's, omega x x, on average, relative to the
-// surface's speed.
-double lag_behind_ball(massspring::Acceleration acceleration, int seconds) {
+// 10 iterations: the points resting on the ball's upper half (within 1 cm of its surface), their
+// velocity against the surface's, omega x x, on average, relative to the surface's speed.
+double lag_behind_ball(double alpha, massspring::Acceleration acceleration, int seconds) {
   const double omega = 1;
   System s = cloth_over_ball(41, 0.5, omega);
-  Solver solver(in_solve_options(16, 10, acceleration));
+  Solver solver(in_solve_options(alpha, 10, acceleration));
   solver.precompute(s, kDt);
   for (int k = 0; k < 30 * seconds; ++k) REQUIRE(solver.step(s).ok());
   int resting = 0;
@@ -126,30 +126,24 @@ double lag_behind_ball(massspring::Acceleration acceleration, int seconds) {
 }
 
 // Dropped on the turning ball, the cloth lands flat and is carried up to speed by friction alone.
-// Run to convergence (200 iterations) its resting points move with the ball's surface to 2.5%
-// after 2 s and 1.8% after 3 s. In 10 plain iterations the friction builds up more slowly: 6.1%
-// after 2 s, 2.9% after 3 s; with Anderson acceleration 4.1% after 2 s.
-TEST_CASE(
-    "contact in the iteration: a cloth on a ball turning at 1 rad/s turns with it after 3 s "
-    "(mu = 0.5, dt = 1/30)") {
-  CHECK(lag_behind_ball(massspring::Acceleration::None, 3) <= 0.05);
-}
-
+// Run to convergence (200 iterations) its resting points move with the ball's surface to 2.3%
+// after 2 s. In 10 iterations with Anderson acceleration: 3.9%; plain, 8.3% (the friction builds
+// up more slowly), which is why the setting is Anderson's.
 TEST_CASE(
     "contact in the iteration: a cloth on a ball turning at 1 rad/s turns with it after 2 s "
-    "with Anderson acceleration (mu = 0.5, dt = 1/30, 10 iterations)") {
-  CHECK(lag_behind_ball(massspring::Acceleration::Anderson, 2) <= 0.05);
+    "(mu = 0.5, dt = 1/30, 10 iterations)") {
+  CHECK(lag_behind_ball(1, massspring::Acceleration::Anderson, 2) <= 0.05);
 }
 
 // The duals carry the term from step to step (support/contact_scenes.hpp).
 TEST_CASE("contact in the iteration: a run resumed with its dual variables continues bit for bit") {
   massspring::test::check_resume_with_duals<Solver>(
-      in_solve_options(16, 10, massspring::Acceleration::None), 21);
+      in_solve_options(1, 10, massspring::Acceleration::Anderson), 21);
 }
 
 TEST_CASE("contact in the iteration: set_contact_duals refuses what the term cannot hold") {
   System s = cloth_over_ball(5, 0.5, 0);
-  Solver solver(in_solve_options(16, 10, massspring::Acceleration::None));
+  Solver solver(in_solve_options(1, 10, massspring::Acceleration::Anderson));
   massspring::Points<double> u = massspring::Points<double>::Zero(s.num_points(), 3);
   CHECK_THROWS_WITH(solver.set_contact_duals(u),
                     "FastMassSpring: set_contact_duals() before precompute()");

@@ -1,12 +1,37 @@
 #pragma once
 /// @file
-/// @brief contact_dual_update(): one point's local step of the contact term that FastMassSpring
-/// and BackwardEuler put inside their solves (local_global/contact_projection.hpp describes the
-/// term: the alternating direction method of multipliers, Boyd et al. 2011, section 3.1.1).
+/// @brief The contact term that FastMassSpring and BackwardEuler put inside their solves
+/// (local_global/contact_projection.hpp describes it: the alternating direction method of
+/// multipliers, Boyd et al. 2011, section 3.1.1): contact_weights(), its weight per point, and
+/// contact_dual_update(), one point's local step.
+
+#include <Eigen/Core>
+#include <cmath>
 
 #include "massspring/contact/colliders/collider_set.hpp"
+#include "massspring/types.hpp"
 
 namespace massspring::detail {
+
+/// @brief The contact term's weight of each point, w_i = alpha sqrt(m_i (m_i + h2 k_i)) [kg]
+/// (h2 = dt^2 [s^2], k_i the summed stiffness of point i's springs [N/m]), into `w` (resized to
+/// the points). It is the geometric mean of the smallest and largest curvature the step's
+/// objective can have at the point, times dt^2 (its inertia alone, and with its springs): the
+/// sqrt(lambda_min lambda_max) penalty of Ghadimi et al. 2015 ("Optimal parameter selection for
+/// the alternating direction method of multipliers (ADMM): quadratic problems", IEEE Transactions
+/// on Automatic Control 60(3)), which balances ADMM's two residuals. A lone point gets alpha m_i;
+/// a cloth point at a large step many times its mass. Allocates only when `w` is resized.
+template <class System, class Scalar>
+void contact_weights(const System& system, Scalar alpha, Scalar h2, Vector<Scalar>& w) {
+  w.setZero(system.num_points());
+  const auto& springs = system.springs();
+  for (Eigen::Index e = 0; e < springs.rows(); ++e)
+    for (int end = 0; end < 2; ++end) w(springs(e, end)) += system.stiffness()(e);
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    const Scalar m = system.masses()(i);
+    w(i) = alpha * std::sqrt(m * (m + h2 * w(i)));
+  }
+}
 
 /// @brief At the iterate x of one point (3 coordinates [m]), with its scaled dual variable u [m]
 /// and its start-of-step position x_start: z = P(x + u), P the colliders' position response

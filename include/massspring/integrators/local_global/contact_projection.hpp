@@ -7,9 +7,10 @@
 /// al. 2011, "Distributed Optimization and Statistical Learning via ADMM", section 3.1.1; Overby
 /// et al. 2017, "ADMM ⊇ Projective Dynamics").
 ///
-/// Each unknown point i carries the weight w_i = alpha m_i / dt^2 (alpha:
-/// FastMassSpringOptions::contact_weight) on Q's diagonal (ReducedSystem::assemble's mass_scale
-/// 1 + alpha) and, per iteration, with P the projection out of the system's colliders
+/// Each unknown point i carries the weight w_i = alpha sqrt(m_i (m_i + dt^2 k_i)) / dt^2 [N/m]
+/// (alpha: FastMassSpringOptions::contact_weight; k_i the summed stiffness of its springs;
+/// detail::contact_weights gives the numerator, in kg) on Q's diagonal (ReducedSystem::assemble's
+/// point_diagonal) and, per iteration, with P the projection out of the system's colliders
 /// (ColliderSet::project: the normal push, with Coulomb friction at position level on the
 /// displacement over the step) and u_i the dual variable [m] (kept from the previous step, 0 after
 /// a factorization):
@@ -40,12 +41,13 @@ namespace massspring::local_global {
 template <class Scalar>
 class ContactProjection {
  public:
-  /// @brief Per-row weights w_r = alpha m / dt^2 (inv_dt2 = 1 / dt^2) and which rows project (the
-  /// unknowns that are not pinned); nothing when alpha is 0. Allocates; called when Q is built.
+  /// @brief Per-row weights w_r [N/m] from the points' (`point_weight`, the ones Q carries; empty
+  /// when the term is off) and which rows project (the unknowns that are not pinned); nothing when
+  /// the term is off. Allocates; called when Q is built.
   template <class System>
-  void build(const System& system, const ReducedSystem<Scalar>& reduced, Scalar alpha,
-             Scalar inv_dt2) {
-    const int nr = alpha > 0 ? reduced.nr : 0;
+  void build(const System& system, const ReducedSystem<Scalar>& reduced,
+             const Vector<Scalar>& point_weight) {
+    const int nr = point_weight.size() > 0 ? reduced.nr : 0;
     weight_.resize(nr);
     projects_.assign(std::size_t(nr), 0);
     point_.assign(std::size_t(nr), 0);
@@ -54,7 +56,7 @@ class ContactProjection {
     for (int r = 0; r < nr; ++r) {
       const int i = reduced.point[std::size_t(r)];
       point_[std::size_t(r)] = i;
-      weight_(r) = alpha * system.masses()(i) * inv_dt2;
+      weight_(r) = point_weight(i);
       projects_[std::size_t(r)] = system.is_pinned(i) ? 0 : 1;
     }
   }

@@ -79,18 +79,19 @@ struct FastMassSpringOptions {
   /// @brief Penalty weight w for PinMode::Penalty [N/m], > 0. Default 1e10 (the reference
   /// solver's).
   Scalar penalty_weight = Scalar(1e10);
-  /// @brief Weight alpha of the contact term inside the iteration, relative to the inertia: each
-  /// unknown point i gets the weight alpha m_i / dt^2 on Q's diagonal, and each local step
-  /// projects it out of the system's colliders with a dual variable (the alternating direction
-  /// method of multipliers; local_global/contact_projection.hpp), so the springs and the global
-  /// step see contact and Coulomb friction. Converged, the step is implicit Euler with
-  /// Signorini-Coulomb contact whatever alpha; alpha sets how fast it converges. Dimensionless,
-  /// finite, >= 0. Default 0: contact is only the end-of-step response every integrator applies
-  /// (docs/contact.md), which at large steps lets cloth slide off an obstacle. With alpha > 0
-  /// (used only when the system has colliders) start from InitialGuess::Inertial: the weight
-  /// slows motion the start does not predict by alpha / (1 + alpha) per iteration. At
-  /// dt = 1/30 s and 10 iterations, 16 suits cloth on obstacles (holds, turns with a turning
-  /// ball) and 1 a lone body sliding (docs/contact.md, "Contact inside the iteration").
+  /// @brief Weight alpha of the contact term inside the iteration (dimensionless, finite, >= 0):
+  /// each unknown point i gets the weight w_i = alpha sqrt(m_i (m_i + dt^2 k_i)) / dt^2 [N/m] on
+  /// Q's diagonal (k_i the summed stiffness of its springs: the geometric mean of its inertia's
+  /// and its springs' curvature, detail::contact_weights), and each local step projects it out of
+  /// the system's colliders with a dual variable (the alternating direction method of
+  /// multipliers; local_global/contact_projection.hpp), so the springs and the global step see
+  /// contact and Coulomb friction. Converged, the step is implicit Euler with Signorini-Coulomb
+  /// contact whatever alpha; alpha sets how fast it converges. Default 0: contact is only the
+  /// end-of-step response every integrator applies (docs/contact.md), which at large steps lets
+  /// cloth slide off an obstacle. With alpha > 0 (used only when the system has colliders) start
+  /// from InitialGuess::Inertial. At dt = 1/30 s and 10 iterations, alpha 1 with
+  /// Acceleration::Anderson holds a block on an incline, slides it at Coulomb's rate and turns
+  /// cloth with a turning ball (docs/contact.md, "Contact inside the iteration").
   Scalar contact_weight = Scalar(0);
   /// @brief Where iterations start (default Current).
   InitialGuess initial_guess = InitialGuess::Current;

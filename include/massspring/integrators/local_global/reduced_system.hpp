@@ -3,8 +3,9 @@
 /// @brief local_global::ReducedSystem: the global step's linear system of FastMassSpring and the
 /// numbering of its unknowns (the model is libigl's min_quad_with_fixed). With exact pins the
 /// pinned points' rows and columns are eliminated: Q = A_F^T K A_F + M_F / dt^2 + (beta / dt) I
-/// over the free points F, and a spring joining a free point to a pinned one moves k x_pinned to
-/// the right-hand side (-Q_FP X_P; PackedSprings::subtract_from adds it). With penalty pins Q
+/// (+ the contact term's weights, W_F) over the free points F, and a spring joining a free point
+/// to a pinned one moves k x_pinned to the right-hand side (-Q_FP X_P; PackedSprings::subtract_from
+/// adds it). With penalty pins Q
 /// covers every point and adds w on the pinned points' diagonal (Q += w C^T C, right-hand side += w
 /// C^T X_target).
 ///
@@ -15,6 +16,8 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
+
+#include "massspring/types.hpp"
 
 namespace massspring::local_global {
 
@@ -28,12 +31,13 @@ struct ReducedSystem {
   std::vector<int> penalty_rows;  // iterate rows of the pinned points (penalty pins)
 
   /// @brief Numbers the unknowns and assembles Q from triplets (duplicates summed):
-  /// A^T K A over the springs, then mass_scale m_i / dt^2 + drag_diagonal on each unknown's
-  /// diagonal (mass_scale 1, or 1 + the contact weight), then `weight` on each pinned point's
-  /// diagonal (penalty pins). Allocates.
+  /// A^T K A over the springs, then m_i / dt^2 + drag_diagonal + point_diagonal(i) on each
+  /// unknown's diagonal (point_diagonal: the contact term's weights [N/m], one per point, or empty
+  /// for none), then `weight` on each pinned point's diagonal (penalty pins). Allocates.
   template <class Traits, class System>
   typename Traits::Matrix assemble(const System& system, bool exact, Scalar inv_dt2,
-                                   Scalar drag_diagonal, Scalar weight, Scalar mass_scale = 1) {
+                                   Scalar drag_diagonal, Scalar weight,
+                                   const Vector<Scalar>& point_diagonal) {
     using Triplet = typename Traits::Triplet;
     n = system.num_points();
     const int m = system.num_springs();
@@ -50,7 +54,7 @@ struct ReducedSystem {
     nr = int(free.size());
 
     std::vector<Triplet> t;
-    t.reserve(std::size_t(4 * m + n));
+    t.reserve(std::size_t(4 * m + 2 * n));
     for (int e = 0; e < m; ++e) {
       const int ri = reduced[std::size_t(springs(e, 0))], rj = reduced[std::size_t(springs(e, 1))];
       if (ri >= 0) t.emplace_back(ri, ri, k(e));
@@ -60,8 +64,11 @@ struct ReducedSystem {
         t.emplace_back(rj, ri, -k(e));
       }
     }
-    for (int r = 0; r < nr; ++r)
-      t.emplace_back(r, r, mass(free[std::size_t(r)]) * inv_dt2 * mass_scale + drag_diagonal);
+    for (int r = 0; r < nr; ++r) {
+      const int i = free[std::size_t(r)];
+      t.emplace_back(r, r, mass(i) * inv_dt2 + drag_diagonal);
+      if (point_diagonal.size() > 0) t.emplace_back(r, r, point_diagonal(i));
+    }
     if (!exact)
       for (int p : system.pinned()) t.emplace_back(p, p, weight);
     return Traits::from_triplets(nr, nr, t);
