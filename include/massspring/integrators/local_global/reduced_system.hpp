@@ -5,9 +5,8 @@
 /// pinned points' rows and columns are eliminated: Q = A_F^T K A_F + M_F / dt^2 + (beta / dt) I
 /// (+ the contact term's weights, W_F) over the free points F, and a spring joining a free point
 /// to a pinned one moves k x_pinned to the right-hand side (-Q_FP X_P; PackedSprings::subtract_from
-/// adds it). With penalty pins Q
-/// covers every point and adds w on the pinned points' diagonal (Q += w C^T C, right-hand side += w
-/// C^T X_target).
+/// adds it). With penalty pins Q covers every point and adds w on the pinned points' diagonal
+/// (Q += w C^T C, right-hand side += w C^T X_target).
 ///
 /// Inside a step the iterate lives in the factor's row order (the fill-reducing permutation), as
 /// a row-major #rows x 3 array: free points first, in the factor's order, then (exact pins) the
