@@ -9,8 +9,9 @@
 //   rests on it with little stretch;
 // - a cloth dropped on a ball that turns about the vertical turns with it (friction): to 5% after
 //   2 s;
-// The setting is one: contact_weight 1 with Anderson acceleration.
 // - the dual variables saved and restored resume a run bit for bit.
+// One setting serves them all: contact_weight 1 with Anderson acceleration (the slide also runs
+// plain and with Chebyshev, the converged step every weight from 0.5 to 16).
 #include <doctest/doctest.h>
 
 #include <algorithm>
