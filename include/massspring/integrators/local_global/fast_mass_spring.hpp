@@ -205,14 +205,13 @@ class FastMassSpring {
     // Colliders: the contact term's weights on Q's diagonal (contact_projection.hpp).
     with_contact_ = !system.colliders().empty();
     contact_weight_ = with_contact_ ? options.contact_weight : Scalar(0);
+    Vector<Scalar> point_weight;  // the term's weight per point [N/m]; empty when it is off
     if (contact_weight_ > 0) {
-      detail::contact_weights(system, contact_weight_, dt_ * dt_, point_weight_);
-      point_weight_ *= inv_dt2;
-    } else {
-      point_weight_.resize(0);
+      detail::contact_weights(system, contact_weight_, dt_ * dt_, point_weight);
+      point_weight *= inv_dt2;
     }
     q_ = reduced_.template assemble<Traits>(system, exact, inv_dt2, drag_ / dt_, weight_,
-                                            point_weight_);
+                                            point_weight);
     const int n = reduced_.n, nr = reduced_.nr;
     term_force_.setZero(other_terms_ ? n : 0, 3);
     apply_threads();
@@ -222,7 +221,7 @@ class FastMassSpring {
     reduced_.renumber(system, llt_.permutation(), exact);
     const int nx = reduced_.nx;
     springs_.build(system, reduced_.row, nx);
-    contact_.build(system, reduced_, point_weight_);
+    contact_.build(system, reduced_, point_weight);
     inertia_.build(system, reduced_, inv_dt2, drag_ / dt_);
 
     const Eigen::Index size = 3 * Eigen::Index(nx);
@@ -407,7 +406,6 @@ class FastMassSpring {
   local_global::ContactProjection<Scalar> contact_;  // the contact term (colliders)
   bool with_contact_ = false;                        // Q was built for a system with colliders
   Scalar contact_weight_ = 0;                        // the contact weight alpha Q carries
-  Vector<Scalar> point_weight_;                      // its weight per point [N/m]; empty if 0
 };
 
 template <class System, class Cholesky_>
