@@ -3,7 +3,7 @@
 // make_cloth's 81 x 81 horizontal grid (2 m x 2 m, 1.9 / 6561 kg a point, k = 1000 N/m, nothing
 // pinned, centre at (0, 0.55, 0)) with its cells split as CreatePatch splits them; a sphere
 // collider (r 0.5 m at the origin) and a floor plane (y = -1), friction 0.5 on both; gravity as a
-// force term. FastMassSpring with 10 iterations from the inertial prediction
+// force term. FastMassSpring with 10 iterations (--iterations) from the inertial prediction
 // (InitialGuess::Inertial), Anderson acceleration and the contact term inside the iteration
 // (contact_weight = 1), one thread. Self-collision (thickness 4 mm, friction 0.5) with
 // --self-collision.
@@ -14,7 +14,7 @@
 //   massspring_drape [--fps 30 | 60 (default 30)] [--self-collision] [--seconds S (default 3)]
 //                    [--crossings] [--contact-weight W (default 1; 0: contact only at the step's
 //                    end, the library's default)] [--plain (no Anderson acceleration)]
-//                    [--no-surface]
+//                    [--no-surface] [--iterations N (default 10)]
 //
 // --no-surface removes the surface make_system gives the cloth, and with it the end-of-step
 // surface pass (contact/response/surface_contact.hpp: the cloth's edges and faces against the
@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   double contact_weight = 1;
   bool anderson = true;
   bool surface = true;
+  int iterations = 10;
   drape::Watch watch;
   // The options of this program; drape::parse() takes --seconds and --crossings.
   const auto option = [&](const std::string& arg, const char* next, int& a) {
@@ -85,6 +86,10 @@ int main(int argc, char** argv) {
       contact_weight = std::atof(next);
       ++a;
       return contact_weight >= 0;
+    } else if (arg == "--iterations" && next) {
+      iterations = std::atoi(next);
+      ++a;
+      return iterations > 0;
     } else if (arg == "--fps" && next) {
       fps = std::atoi(next);
       ++a;
@@ -99,7 +104,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: massspring_drape [--fps N > 0 (default 30)] [--self-collision] "
                  "[--seconds S > 0] [--crossings] [--contact-weight W >= 0 (default 1)] "
-                 "[--plain] [--no-surface (not with --self-collision)]\n");
+                 "[--plain] [--no-surface (not with --self-collision)] "
+                 "[--iterations N > 0 (default 10)]\n");
     return 2;
   }
   const double dt = 1.0 / fps;
@@ -109,7 +115,7 @@ int main(int argc, char** argv) {
   massspring::Triangles triangles = s.surface();
   if (!surface) s.set_surface(massspring::Triangles());
   massspring::FastMassSpring<System> fms;
-  fms.options.iterations = 10;
+  fms.options.iterations = iterations;
   fms.options.initial_guess = massspring::InitialGuess::Inertial;
   fms.options.contact_weight = contact_weight;
   if (anderson) fms.options.acceleration = massspring::Acceleration::Anderson;
@@ -127,9 +133,9 @@ int main(int argc, char** argv) {
   ok = ok && s.positions().allFinite();
   char engine[160];
   std::snprintf(engine, sizeof engine,
-                "massspring FastMassSpring, %d points, %d springs, %d triangles, 10 iterations%s, "
+                "massspring FastMassSpring, %d points, %d springs, %d triangles, %d iterations%s, "
                 "contact_weight %g, %s",
-                int(s.num_points()), s.num_springs(), int(triangles.rows()),
+                int(s.num_points()), s.num_springs(), int(triangles.rows()), iterations,
                 anderson ? " (Anderson)" : "", contact_weight,
                 self_collision ? "self-collision on (4 mm, 0.5)"
                 : surface      ? "self-collision off"

@@ -11,7 +11,8 @@
 // index iy * 81 + ix and lies at (-1 + ix dx, 0.55, -1 + iy dx), dx = 2 / 80.
 //
 // Figures (of positions x, the links and their rest lengths):
-//   strain    |l / l0 - 1| over the links at the end, mean and max;
+//   strain    |l / l0 - 1| over the links at the end, mean and max, and how many links exceed
+//             kStrainBound (the largest strain the comparison accepts at rest);
 //   gap       min over the points of |x_i| - r (signed: negative = a point inside the sphere);
 //   rest      the cloth's highest point above the sphere's top, max_i y_i - r;
 //   crossings edge-triangle crossings of the cloth's own surface (tests/support/intersections.hpp,
@@ -33,14 +34,15 @@
 
 namespace drape {
 
-constexpr int kSide = 81;          // points along each side
-constexpr double kWidth = 2.0;     // m
-constexpr double kMass = 1.9;      // kg, the whole cloth
-constexpr double kHeight = 0.55;   // m, the cloth's plane at the start
-constexpr double kRadius = 0.5;    // m, the sphere's (centre at the origin)
-constexpr double kFloor = -1.0;    // m, the floor's top
-constexpr double kFriction = 0.5;  // Coulomb, sphere and floor
-constexpr double kGravity = 9.81;  // m/s^2
+constexpr int kSide = 81;              // points along each side
+constexpr double kWidth = 2.0;         // m
+constexpr double kMass = 1.9;          // kg, the whole cloth
+constexpr double kHeight = 0.55;       // m, the cloth's plane at the start
+constexpr double kRadius = 0.5;        // m, the sphere's (centre at the origin)
+constexpr double kStrainBound = 0.15;  // the largest |l / l0 - 1| a link may have at rest
+constexpr double kFloor = -1.0;        // m, the floor's top
+constexpr double kFriction = 0.5;      // Coulomb, sphere and floor
+constexpr double kGravity = 9.81;      // m/s^2
 
 inline int index(int ix, int iy) { return iy * kSide + ix; }
 
@@ -65,6 +67,7 @@ inline massspring::Triangles patch_triangles() {
 
 struct Figures {
   double strain_mean = 0, strain_max = 0, gap = 0, rest = 0;
+  int past_bound = 0;  // links with strain > kStrainBound
 };
 
 inline Figures figures(const massspring::Points<double>& x, const massspring::Edges& links,
@@ -75,6 +78,7 @@ inline Figures figures(const massspring::Points<double>& x, const massspring::Ed
     const double strain = std::abs(l / rest_lengths(e) - 1);
     f.strain_mean += strain;
     f.strain_max = std::max(f.strain_max, strain);
+    f.past_bound += strain > kStrainBound;
   }
   f.strain_mean /= double(links.rows());
   f.gap = std::numeric_limits<double>::infinity();
@@ -137,6 +141,7 @@ inline void print(const char* engine, double dt, int frames, const FrameTimer& t
   std::printf("ms per frame (CPU): %.3f (wall clock: %.3f)\n", per_frame, time.wall_ms / frames);
   std::printf("ms per simulated second (CPU): %.1f\n", per_frame / dt);
   std::printf("strain at the end, mean: %.4f, max: %.4f\n", f.strain_mean, f.strain_max);
+  std::printf("links past %.0f%% strain at the end: %d\n", 100 * kStrainBound, f.past_bound);
   std::printf("gap to the sphere at the end: %.3f mm (lowest at a frame end: %.3f mm)\n",
               1e3 * f.gap, 1e3 * w.lowest_gap);
   std::printf("rests above the sphere (highest point - r): %.3f mm\n", 1e3 * f.rest);

@@ -20,29 +20,32 @@
 /// that file). Cost O(triangles + nodes visited + pairs log pairs) a call; a cloth that bends
 /// smoothly has few pairs, as its neighbours on one layer are not paired.
 ///
-/// **Without self-collision** every pair has an obstacle's element, and the list is kept from
-/// step to step. Each element keeps a stored box that holds its current one: the box of its
-/// points at the start and end of the step and at the end of a next step at the same velocity
-/// (x1 + (x1 - x0)), grown by grow_of() and a further margin m. The list holds every pair whose
-/// stored boxes overlap: a superset of the candidates while every current box stays inside its
-/// stored box. full() stores every element's box, hashes them (contact/broad_phase/box_hash.hpp)
-/// and queries the obstacles' elements.
+/// **Without self-collision** every pair has an obstacle's element and one of the cloth, and the
+/// list is kept from step to step. Each element keeps a stored box that holds its current one: the
+/// box of its points at the start and end of the step and at the end of a next step at the same
+/// velocity (x1 + (x1 - x0)), grown by grow_of() and a further margin m. The list holds every pair
+/// whose stored boxes overlap: a superset of the candidates while every current box stays inside
+/// its stored box. full() stores every element's box, hashes the obstacles'
+/// (contact/broad_phase/box_hash.hpp) and queries the cloth's elements against them.
 /// refresh() follows a round that moved the end positions of the points flagged in `moved`, and
 /// next_step() a new step of the same elements (every point moved): an element whose current box
 /// has left its stored box has escaped; its stored box is taken again from its current motion, its
-/// pairs are dropped and listed again from that box, against the hash for the elements in place
-/// and a small second hash of the escaped ones (the first still has them in the cells of their old
-/// boxes). Elements that stay inside keep their pairs untouched, so a cloth that rests, or whose
+/// pairs are dropped and listed again from that box, against a hash of the elements in place and a
+/// second hash of the escaped ones (the first still has them in the cells of their old boxes): a
+/// cloth element against the obstacles' elements alone, an obstacle's against every element (a
+/// hash of the cloth's is built only when an obstacle's element escapes, as a moving collider's
+/// do). Elements that stay inside keep their pairs untouched, so a cloth that rests, or whose
 /// displacement changes by less than m from one step to the next, costs O(elements) a step, not a
 /// hash query per element.
 /// More than a quarter of the elements of a kind escaped since the last full() (then a new hash
 /// costs less than the queries), or other elements than the last step's (a new surface, collider
 /// or self-collision switch): full() instead.
-/// Cost: full() O(elements x cells per box); refresh() and next_step() O(elements + pairs), plus
-/// one query per escaped element.
+/// Cost: full() O(obstacles' elements x cells per box + cloth's elements); refresh() and
+/// next_step() O(elements + pairs), plus one query per escaped element.
 ///
 /// Work arrays keep their capacity: after the first steps nothing allocates.
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -96,9 +99,17 @@ class SurfaceCandidates {
     if (!(cell > 0)) cell = 1;
     cell_ = cell;
     // Each hash is built when a query first needs it (refresh() too).
-    points_.hashed = triangles_.hashed = edges_.hashed = false;
+    for (Layer* layer : {&points_, &triangles_, &edges_}) layer->cell = cell;
     pairs_.clear();
     obstacle_pairs(e);
+    // A moving obstacle's elements leave their boxes in the steps to come, and their queries read
+    // the hash of every element: built now, in a step that sizes the work arrays.
+    const Eigen::Index n = e.n, extra = e.x0.rows() - n;
+    const bool obstacles_move = e.x0.bottomRows(extra) != e.x1.bottomRows(extra);
+    for (Layer* layer : {&points_, &triangles_, &edges_}) {
+      if (obstacles_move) layer->hash_all();
+      layer->reserve_escaped();
+    }
     reserve_refresh(e);
   }
 
@@ -133,17 +144,15 @@ class SurfaceCandidates {
     };
     pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), stale), pairs_.end());
     const std::size_t kept = pairs_.size();  // still in order
-    if (!points_.moved_ids.empty()) triangles_.hash_boxes(cell_);
     for (int v : points_.moved_ids)
-      triangles_.query(points_.stored[std::size_t(v)], [&](int t) { add_point_triangle(e, v, t); });
-    if (!triangles_.moved_ids.empty()) points_.hash_boxes(cell_);
+      triangles_.query(points_.is_cloth(v), points_.stored[std::size_t(v)],
+                       [&](int t) { add_point_triangle(e, v, t); });
     for (int t : triangles_.moved_ids)
-      points_.query(triangles_.stored[std::size_t(t)], [&](int v) {
+      points_.query(triangles_.is_cloth(t), triangles_.stored[std::size_t(t)], [&](int v) {
         if (!points_.moved[std::size_t(v)]) add_point_triangle(e, v, t);
       });
-    if (!edges_.moved_ids.empty()) edges_.hash_boxes(cell_);
     for (int a : edges_.moved_ids)
-      edges_.query(edges_.stored[std::size_t(a)], [&](int b) {
+      edges_.query(edges_.is_cloth(a), edges_.stored[std::size_t(a)], [&](int b) {
         if (!edges_.moved[std::size_t(b)] || b > a) add_edge_edge(e, a, b);
       });
     // The new pairs in order, merged with the kept ones.
@@ -159,16 +168,66 @@ class SurfaceCandidates {
   [[nodiscard]] long full_count() const { return full_count_; }
 
  private:
-  // The boxes and hash of one kind of element (points, edges or triangles).
+  // Some elements of a layer and a hash of their stored boxes, built when first queried.
+  struct Subset {
+    std::vector<int> ids;
+    std::vector<Box> boxes;  // stored[ids[j]] as they were when hashed
+    BoxHash<Scalar> hash;
+    bool hashed = false;
+
+    void clear() {
+      ids.clear();
+      hashed = false;
+    }
+    void add(int i) {
+      ids.push_back(i);
+      hashed = false;
+    }
+    // Calls visit(i) for each element i of the subset whose box, as hashed, overlaps q.
+    template <class Visit>
+    void query(const std::vector<Box>& stored, Scalar cell, const Box& q, Visit&& visit) {
+      if (ids.empty()) return;
+      if (!hashed) {
+        boxes.resize(ids.size());
+        for (std::size_t j = 0; j < ids.size(); ++j) boxes[j] = stored[std::size_t(ids[j])];
+        hash.build(boxes, cell);
+        hashed = true;
+      }
+      hash.query(q, [&](int j) { visit(ids[std::size_t(j)]); });
+    }
+  };
+
+  // The boxes and hashes of one kind of element (points, edges or triangles): the cloth's
+  // elements [0, cloth), then the obstacles'. Without self-collision a cloth element pairs only
+  // with an obstacle's, so its queries read the obstacles' hashes alone; an obstacle's read the
+  // hash of every element.
   struct Layer {
     std::vector<Box> stored;  // ahead(), grown by grow_of() + margin; hashed unless escaped
     std::vector<char> moved, escaped;  // moved: escaped in the last update(), pairs to list
-    std::vector<int> moved_ids, escaped_ids;
-    std::vector<Box> escaped_boxes;  // stored[escaped_ids[j]], hashed in escaped_hash
-    BoxHash<Scalar> hash, escaped_hash;
+    std::vector<int> moved_ids;
+    std::size_t cloth = 0;
+    BoxHash<Scalar> hash;  // every element's stored box as full() left it
+    bool hashed = false;
+    Subset obstacles;          // the obstacles' elements, boxes as full() left them
+    Subset escaped_all;        // the escaped elements
+    Subset escaped_obstacles;  // the escaped obstacles' elements
     Scalar cell = 1;
-    bool hashed = false;          // hash holds `stored` as full() left it
-    bool escaped_hashed = false;  // escaped_hash holds escaped_boxes as they are
+
+    [[nodiscard]] bool is_cloth(int i) const { return std::size_t(i) < cloth; }
+
+    // Hashes every element's stored box, unless done since the last full().
+    void hash_all() {
+      if (hashed) return;
+      hash.build(stored, cell);
+      hashed = true;
+      // The escaped ones, a part of these, fit in as much room.
+      escaped_all.hash.reserve(stored.size(), hash.entries());
+    }
+    // Makes room for the hash of the escaped obstacles' elements, a part of the obstacles'.
+    void reserve_escaped() {
+      if (obstacles.hashed)
+        escaped_obstacles.hash.reserve(obstacles.ids.size(), obstacles.hash.entries());
+    }
 
     // The box of the element's points at x0, x1 and x1 + (x1 - x0), grown by g.
     static Box ahead(const Elements& e, const Element& element, int count, Scalar g) {
@@ -181,16 +240,6 @@ class SurfaceCandidates {
       }
       return b;
     }
-    // Hashes the stored boxes, unless done since the last full().
-    void hash_boxes(Scalar cell_size) {
-      cell = cell_size;
-      if (hashed) return;
-      hash.build(stored, cell_size);
-      hashed = true;
-      // The escaped ones, a part of these, fit in as much room.
-      escaped_boxes.reserve(stored.size());
-      escaped_hash.reserve(stored.size(), hash.entries());
-    }
 
     // Stores each element's box: ahead() grown by grow_of() and the margin, or (`swept_only`)
     // the box of the step's sweep grown by grow_of().
@@ -202,12 +251,20 @@ class SurfaceCandidates {
                         ? e.swept(elements[i], count, e.grow_of(elements[i], grow))
                         : ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
       escaped.assign(elements.size(), 0);
-      escaped_ids.clear();
-      escaped_hashed = false;
+      cloth = 0;
+      while (cloth < elements.size() && elements[cloth].owner < 0) ++cloth;
+      hashed = false;
+      obstacles.clear();
+      for (std::size_t i = cloth; i < elements.size(); ++i) obstacles.ids.push_back(int(i));
+      escaped_all.clear();
+      escaped_obstacles.clear();
       // refresh()'s arrays, so that the steps after the first allocate nothing.
       moved.reserve(elements.size());
       moved_ids.reserve(elements.size());
-      escaped_ids.reserve(elements.size());
+      for (Subset* subset : {&escaped_all, &escaped_obstacles}) {
+        subset->ids.reserve(elements.size());
+        subset->boxes.reserve(elements.size());
+      }
     }
     // Flags the elements with a moved point whose current box left the stored one, and stores
     // their box again (ahead()); false when too many have escaped their stored boxes.
@@ -224,29 +281,33 @@ class SurfaceCandidates {
         if (inside(now, stored[i])) continue;
         moved[i] = 1;
         moved_ids.push_back(int(i));
-        if (!escaped[i]) escaped_ids.push_back(int(i));
+        if (!escaped[i]) {
+          escaped_all.add(int(i));
+          if (!is_cloth(int(i))) escaped_obstacles.add(int(i));
+        }
         escaped[i] = 1;
-        escaped_hashed = false;
+        escaped_all.hashed = escaped_obstacles.hashed = false;
         stored[i] = ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
       }
-      return escaped_ids.size() <= std::max<std::size_t>(64, elements.size() / 4);
+      return escaped_all.ids.size() <= std::max<std::size_t>(64, elements.size() / 4);
     }
-    // Calls visit(i) for each element i whose stored box overlaps q: through the hash for the
-    // elements in place, through the second hash for the escaped ones.
+    // Calls visit(i) for each element i whose stored box overlaps q and that can pair with an
+    // element of the cloth (`from_cloth`: the obstacles' elements) or of an obstacle (every
+    // element): the ones in place through a hash of full()'s boxes, the escaped ones through a
+    // second hash.
     template <class Visit>
-    void query(const Box& q, Visit&& visit) {
-      hash.query(q, [&](int i) {
+    void query(bool from_cloth, const Box& q, Visit&& visit) {
+      const auto in_place = [&](int i) {
         if (!escaped[std::size_t(i)]) visit(i);
-      });
-      if (escaped_ids.empty()) return;
-      if (!escaped_hashed) {
-        escaped_boxes.resize(escaped_ids.size());
-        for (std::size_t j = 0; j < escaped_ids.size(); ++j)
-          escaped_boxes[j] = stored[std::size_t(escaped_ids[j])];
-        escaped_hash.build(escaped_boxes, cell);
-        escaped_hashed = true;
+      };
+      if (from_cloth) {
+        obstacles.query(stored, cell, q, in_place);
+        escaped_obstacles.query(stored, cell, q, visit);
+        return;
       }
-      escaped_hash.query(q, [&](int j) { visit(escaped_ids[std::size_t(j)]); });
+      hash_all();
+      hash.query(q, in_place);
+      escaped_all.query(stored, cell, q, visit);
     }
   };
 
@@ -264,36 +325,16 @@ class SurfaceCandidates {
     return x.kind != y.kind ? x.kind < y.kind : x.a != y.a ? x.a < y.a : x.b < y.b;
   }
 
-  // full()'s pairs without self-collision, where every pair has an obstacle's element: only the
-  // obstacles' points, triangles and edges are queried (the cloth's with one another would all be
-  // rejected by pair_gap()), the cloth's points through their own hash; then sorted.
+  // full()'s pairs without self-collision, where every pair has an obstacle's element and one of
+  // the cloth: each cloth point, triangle and edge queried against the obstacles' elements of the
+  // other kind (their hashes hold only the obstacles'); then sorted.
   void obstacle_pairs(const Elements& e) {
-    for (std::size_t v = 0; v < e.points.size(); ++v) {
-      if (e.points[v].owner < 0) continue;
-      triangles_.hash_boxes(cell_);
-      const Box& box = points_.stored[v];
-      triangles_.hash.query(box, [&](int t) { add_point_triangle(e, int(v), t); });
-    }
-    bool obstacle_triangles = false;
-    for (const Element& t : e.triangles) obstacle_triangles = obstacle_triangles || t.owner >= 0;
-    if (obstacle_triangles) {
-      points_.hash_boxes(cell_);
-      for (std::size_t t = 0; t < e.triangles.size(); ++t) {
-        if (e.triangles[t].owner < 0) continue;
-        const Box& box = triangles_.stored[t];
-        points_.hash.query(box, [&](int v) {
-          if (e.points[std::size_t(v)].owner < 0) add_point_triangle(e, v, int(t));
-        });
-      }
-    }
-    for (std::size_t a = 0; a < e.edges.size(); ++a) {
-      if (e.edges[a].owner < 0) continue;
-      edges_.hash_boxes(cell_);
-      const Box& box = edges_.stored[a];
-      edges_.hash.query(box, [&](int b) {
-        if (e.edges[std::size_t(b)].owner < 0) add_edge_edge(e, int(a), b);
-      });
-    }
+    for (std::size_t v = 0; v < points_.cloth; ++v)
+      triangles_.query(true, points_.stored[v], [&](int t) { add_point_triangle(e, int(v), t); });
+    for (std::size_t t = 0; t < triangles_.cloth; ++t)
+      points_.query(true, triangles_.stored[t], [&](int v) { add_point_triangle(e, v, int(t)); });
+    for (std::size_t a = 0; a < edges_.cloth; ++a)
+      edges_.query(true, edges_.stored[a], [&](int b) { add_edge_edge(e, int(a), b); });
     std::sort(pairs_.begin(), pairs_.end(), before);
   }
 
