@@ -39,10 +39,10 @@ constexpr double kWidth = 2.0;         // m
 constexpr double kMass = 1.9;          // kg, the whole cloth
 constexpr double kHeight = 0.55;       // m, the cloth's plane at the start
 constexpr double kRadius = 0.5;        // m, the sphere's (centre at the origin)
-constexpr double kStrainBound = 0.15;  // the largest |l / l0 - 1| a link may have at rest
 constexpr double kFloor = -1.0;        // m, the floor's top
 constexpr double kFriction = 0.5;      // Coulomb, sphere and floor
 constexpr double kGravity = 9.81;      // m/s^2
+constexpr double kStrainBound = 0.15;  // the largest |l / l0 - 1| a link may have at rest
 
 inline int index(int ix, int iy) { return iy * kSide + ix; }
 

@@ -317,6 +317,32 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
     const PairSet now = brute_force(e, grow);
     CHECK(std::includes(got.begin(), got.end(), now.begin(), now.end()));
   }
+
+  // A round that moves the obstacles' points (a moving collider) out of their boxes, and cloth
+  // points with them: an escaped obstacle element is queried against every element, an escaped
+  // cloth element against the escaped obstacles' too; still every pair, each once.
+  std::fill(moved.begin(), moved.end(), char(0));
+  for (Eigen::Index i = c.x1.rows(); i < e.x1.rows(); ++i) {
+    e.x1(i, 0) += 0.01;  // five margins
+    moved[std::size_t(i)] = 1;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const int i = pick(rng);
+    e.x1(i, 0) += 0.01;
+    moved[std::size_t(i)] = 1;
+  }
+  const long fulls = broad.full_count();
+  broad.refresh(e, moved);
+  REQUIRE(broad.full_count() == fulls);  // listed again by refresh(), not afresh by full()
+  const PairSet got = listed(broad.pairs());
+  const PairSet now = brute_force(e, grow);
+  REQUIRE(now != want);  // the obstacles' pairs changed
+  CHECK(std::includes(got.begin(), got.end(), now.begin(), now.end()));
+  const auto same = [](const contact::ElementPair& p, const contact::ElementPair& q) {
+    return p.kind == q.kind && p.a == q.a && p.b == q.b;
+  };
+  CHECK(std::adjacent_find(broad.pairs().begin(), broad.pairs().end(), same) ==
+        broad.pairs().end());
 }
 
 // Steps after steps of the same elements: next_step() keeps the pairs of the elements that stay

@@ -98,13 +98,13 @@ class SurfaceCandidates {
     Scalar cell = extent / Scalar(std::max<std::size_t>(1, triangles_.stored.size()));
     if (!(cell > 0)) cell = 1;
     cell_ = cell;
-    // Each hash is built when a query first needs it (refresh() too).
+    // The hashes are built when a query first needs them (refresh() too), but for the one below.
     for (Layer* layer : {&points_, &triangles_, &edges_}) layer->cell = cell;
     pairs_.clear();
     obstacle_pairs(e);
     // A moving obstacle's elements leave their boxes in the steps to come, and their queries read
     // the hash of every element: built now, in a step that sizes the work arrays.
-    const Eigen::Index n = e.n, extra = e.x0.rows() - n;
+    const Eigen::Index extra = e.x0.rows() - e.n;
     const bool obstacles_move = e.x0.bottomRows(extra) != e.x1.bottomRows(extra);
     for (Layer* layer : {&points_, &triangles_, &edges_}) {
       if (obstacles_move) layer->hash_all();
@@ -177,10 +177,6 @@ class SurfaceCandidates {
 
     void clear() {
       ids.clear();
-      hashed = false;
-    }
-    void add(int i) {
-      ids.push_back(i);
       hashed = false;
     }
     // Calls visit(i) for each element i of the subset whose box, as hashed, overlaps q.
@@ -281,12 +277,15 @@ class SurfaceCandidates {
         if (inside(now, stored[i])) continue;
         moved[i] = 1;
         moved_ids.push_back(int(i));
+        // A box stored again, or a new escaped element: the hashes that hold it are stale.
+        const bool obstacle = !is_cloth(int(i));
         if (!escaped[i]) {
-          escaped_all.add(int(i));
-          if (!is_cloth(int(i))) escaped_obstacles.add(int(i));
+          escaped_all.ids.push_back(int(i));
+          if (obstacle) escaped_obstacles.ids.push_back(int(i));
         }
         escaped[i] = 1;
-        escaped_all.hashed = escaped_obstacles.hashed = false;
+        escaped_all.hashed = false;
+        if (obstacle) escaped_obstacles.hashed = false;
         stored[i] = ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
       }
       return escaped_all.ids.size() <= std::max<std::size_t>(64, elements.size() / 4);

@@ -91,7 +91,8 @@ struct FastMassSpringOptions {
   /// cloth slide off an obstacle. With alpha > 0 (used only when the system has colliders) start
   /// from InitialGuess::Inertial. At dt = 1/30 s and 10 iterations, alpha 1 with
   /// Acceleration::Anderson holds a block on an incline, slides it at Coulomb's rate and turns
-  /// cloth with a turning ball (docs/contact.md, "Contact inside the iteration").
+  /// cloth with a turning ball (docs/contact.md, "Contact inside the iteration"); with
+  /// self-collision there, 0.5 with the plain iteration (docs/contact.md, Limits).
   Scalar contact_weight = Scalar(0);
   /// @brief Where iterations start (default Current).
   InitialGuess initial_guess = InitialGuess::Current;
