@@ -177,6 +177,69 @@ TEST_CASE("NormalConeTree: every overlapping pair is listed once unless a skippe
   CHECK(skipped_patches > 12);
 }
 
+// A refit of the triangles around a few moved corners against a new tree refitted whole to the
+// same motion: the same patches skipped, and self_pairs() and query() give exactly the fresh
+// tree's pairs and triangles that involve a changed triangle (none when nothing changed), over
+// bends and crumples, one partial refit after another.
+TEST_CASE("NormalConeTree: a refit of the changed triangles alone agrees with a whole refit") {
+  std::mt19937 rng(29);
+  const auto [x0, t] = sheet(7);
+  Tree tree;
+  tree.build(x0, t);
+  const Pts a = bend(x0, rng, 0.002);
+  Pts b = bend(x0, rng, 0.004);
+  const double g = 0.001;
+  tree.refit(a, b, g);
+  std::uniform_int_distribution<int> pick(0, int(x0.rows()) - 1);
+  int pairs_seen = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const int moves = trial % 6;  // 0: nothing changed
+    const double reach = trial < 15 ? 0.003 : 0.02;
+    std::uniform_real_distribution<double> by(-reach, reach);
+    std::set<int> points;
+    for (int k = 0; k < moves; ++k) {
+      const int i = pick(rng);
+      points.insert(i);
+      for (int c = 0; c < 3; ++c) b(i, c) += by(rng);
+    }
+    std::vector<char> changed(t.size(), 0);
+    for (std::size_t s = 0; s < t.size(); ++s)
+      for (int i : t[s]) changed[s] = changed[s] || points.count(i);
+    tree.refit(a, b, g, changed);
+    Tree fresh;
+    fresh.build(x0, t);
+    fresh.refit(a, b, g);
+    CAPTURE(trial);
+    REQUIRE(fresh.size() == tree.size());
+    for (std::size_t k = 0; k < tree.size(); ++k)
+      CHECK(tree.cannot_touch_itself(a, b, k) == fresh.cannot_touch_itself(a, b, k));
+    std::set<std::pair<int, int>> got, want;
+    tree.self_pairs(a, b, [&](int s, int u) {
+      REQUIRE(got.insert({std::min(s, u), std::max(s, u)}).second);  // once
+    });
+    fresh.self_pairs(a, b, [&](int s, int u) {
+      if (changed[std::size_t(s)] || changed[std::size_t(u)])
+        want.insert({std::min(s, u), std::max(s, u)});
+    });
+    CHECK(got == want);
+    pairs_seen += int(want.size());
+    // Queries with each triangle's box grown by 2 mm.
+    for (std::size_t s = 0; s < t.size(); s += 7) {
+      contact::AlignedBox3<double> q{b.row(t[s][0]).transpose(), b.row(t[s][0]).transpose()};
+      q.lo.array() -= 0.002;
+      q.hi.array() += 0.002;
+      std::set<int> seen, expected;
+      tree.query(q, [&](int u) { REQUIRE(seen.insert(u).second); });
+      fresh.query(q, [&](int u) {
+        if (changed[std::size_t(u)]) expected.insert(u);
+      });
+      CHECK(seen == expected);
+    }
+    if (moves == 0) CHECK(got.empty());
+  }
+  CHECK(pairs_seen > 20);
+}
+
 // Bends and folds of growing size, up to a strip folded through itself: whatever the tree skips
 // never touches itself at any of 101 times of the step, and a patch that crosses itself at the
 // end of the step is never skipped; then crumpled ends.

@@ -123,10 +123,12 @@ double closest(const contact::SurfaceElements<double>& e, int kind, int a, int b
 
 // With self-collision: the listed pairs are brute-force pairs (each once, in order); every
 // brute-force pair left out is one of the cloth's own, lies in a patch that the tree (tested in
-// tests/contact/broad_phase/test_normal_cone_tree.cpp) skips for this motion, and stays apart
-// over the step. Returns how many were left out.
+// tests/contact/broad_phase/test_normal_cone_tree.cpp) skips for this motion, or for an `earlier`
+// one (end positions since the last full()) in which its points ended where they end now, and
+// stays apart over the step. Returns how many were left out.
 int check_self(const contact::SurfaceElements<double>& e,
-               const std::vector<contact::ElementPair>& pairs, double grow) {
+               const std::vector<contact::ElementPair>& pairs, double grow,
+               const std::vector<massspring::Points<double>>& earlier = {}) {
   const PairSet got = listed(pairs);
   const PairSet want = brute_force(e, grow);
   CHECK(std::includes(want.begin(), want.end(), got.begin(), got.end()));
@@ -134,26 +136,41 @@ int check_self(const contact::SurfaceElements<double>& e,
   std::vector<std::array<int, 3>> cloth;
   for (const auto& t : e.triangles)
     if (t.owner < 0) cloth.push_back(t.p);
-  contact::NormalConeTree<double> tree;
-  tree.build(e.x0, cloth);
-  tree.refit(e.x0, e.x1, grow);
-  std::vector<std::set<int>> patches, patch_triangles;
-  for (std::size_t k = 0; k < tree.size(); ++k)
-    if (tree.cannot_touch_itself(e.x0, e.x1, k)) {
-      std::set<int> points, triangles;
-      for (int t : tree.patch(k)) {
-        points.insert(cloth[std::size_t(t)].begin(), cloth[std::size_t(t)].end());
-        triangles.insert(t);
+  // Each motion's skipped patches, as sets of points and of triangles.
+  struct Skipped {
+    massspring::Points<double> x1;
+    std::vector<std::set<int>> points, triangles;
+  };
+  std::vector<Skipped> motions;
+  motions.push_back({e.x1, {}, {}});
+  for (const auto& x1 : earlier) motions.push_back({x1, {}, {}});
+  for (Skipped& m : motions) {
+    contact::NormalConeTree<double> tree;
+    tree.build(e.x0, cloth);
+    tree.refit(e.x0, m.x1, grow);
+    for (std::size_t k = 0; k < tree.size(); ++k)
+      if (tree.cannot_touch_itself(e.x0, m.x1, k)) {
+        std::set<int> points, triangles;
+        for (int t : tree.patch(k)) {
+          points.insert(cloth[std::size_t(t)].begin(), cloth[std::size_t(t)].end());
+          triangles.insert(t);
+        }
+        m.points.push_back(points);
+        m.triangles.push_back(triangles);
       }
-      patches.push_back(points);
-      patch_triangles.push_back(triangles);
-    }
-  // Whether one skipped patch has all these points (and triangle t, when t >= 0).
-  const auto held = [&](std::initializer_list<int> ids, int t) {
-    for (std::size_t k = 0; k < patches.size(); ++k) {
-      bool all = t < 0 || patch_triangles[k].count(t);
-      for (int i : ids) all = all && patches[k].count(i);
-      if (all) return true;
+  }
+  // Whether a skipped patch of a motion that ends these points where they end now has them all
+  // (and triangle t, when t >= 0; its corners are among the points then).
+  const auto held = [&](std::vector<int> ids, int t) {
+    if (t >= 0) ids.insert(ids.end(), cloth[std::size_t(t)].begin(), cloth[std::size_t(t)].end());
+    for (const Skipped& m : motions) {
+      bool same = true;
+      for (int i : ids) same = same && m.x1.row(i) == e.x1.row(i);
+      for (std::size_t k = 0; same && k < m.points.size(); ++k) {
+        bool all = t < 0 || m.triangles[k].count(t);
+        for (int i : ids) all = all && m.points[k].count(i);
+        if (all) return true;
+      }
     }
     return false;
   };
@@ -255,20 +272,56 @@ TEST_CASE("SurfaceCandidates: with self-collision, every pair that can meet is l
   else
     CHECK(left_out < int(broad.pairs().size()));
 
+  // Rounds that move a few cloth points: refresh() lists again the pairs of the elements they
+  // are on, which must be exactly those a new full() lists, and keeps the others.
   std::vector<char> moved(std::size_t(e.x1.rows()), 0);
   std::uniform_int_distribution<int> pick(0, int(c.x1.rows()) - 1);  // cloth points only
-  for (const double step : {margin / 4, 0.03}) {
+  std::vector<massspring::Points<double>> earlier = {e.x1};
+  for (const double step : {margin / 4, 0.03, 0.0, 0.03, margin / 4}) {
     std::fill(moved.begin(), moved.end(), char(0));
-    std::uniform_real_distribution<double> by(-step, step);
+    std::uniform_real_distribution<double> by(-step, std::max(step, 1e-9));
     for (int k = 0; k < 5; ++k) {
       const int i = pick(rng);
-      for (int a = 0; a < 3; ++a) e.x1(i, a) += by(rng);
+      if (step > 0)  // step 0: flagged, not moved
+        for (int a = 0; a < 3; ++a) e.x1(i, a) += by(rng);
       moved[std::size_t(i)] = 1;
     }
+    const std::vector<contact::ElementPair> before = broad.pairs();
     broad.refresh(e, moved);
-    check_self(e, broad.pairs(), grow);
+    CAPTURE(step);
+    check_self(e, broad.pairs(), grow, earlier);
+    earlier.push_back(e.x1);
+    if (step == 0) CHECK(listed(broad.pairs()) == listed(before));
+    contact::SurfaceCandidates<double> fresh;
+    fresh.full(e, grow, margin);
+    const auto on_moved = [&](const PairSet& all) {
+      PairSet out;
+      for (const auto& [kind, a, b] : all) {
+        const auto& first = kind == 0 ? e.points[std::size_t(a)] : e.edges[std::size_t(a)];
+        const auto& second = kind == 0 ? e.triangles[std::size_t(b)] : e.edges[std::size_t(b)];
+        bool any = false;
+        for (int k = 0; k < (kind == 0 ? 1 : 2); ++k)
+          any = any || moved[std::size_t(first.p[std::size_t(k)])];
+        for (int k = 0; k < (kind == 0 ? 3 : 2); ++k)
+          any = any || moved[std::size_t(second.p[std::size_t(k)])];
+        if (any) out.insert({kind, a, b});
+      }
+      return out;
+    };
+    if (step > 0) CHECK(on_moved(listed(broad.pairs())) == on_moved(listed(fresh.pairs())));
   }
-  CHECK(broad.full_count() == 3);  // each refresh() lists afresh
+  CHECK(broad.full_count() == 1);  // no refresh() listed afresh
+
+  // An obstacle's point that moves (the capsule's end; no impulse moves one) makes refresh()
+  // list every pair afresh.
+  std::fill(moved.begin(), moved.end(), char(0));
+  const Eigen::Index end = e.x1.rows() - 1;
+  REQUIRE(e.owner[std::size_t(end)] >= 0);
+  e.x1(end, 2) += 0.01;
+  moved[std::size_t(end)] = 1;
+  broad.refresh(e, moved);
+  CHECK(broad.full_count() == 2);
+  check_self(e, broad.pairs(), grow);
 }
 
 // Without self-collision full() queries only the obstacles' elements: it must still list every
@@ -306,7 +359,7 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
   std::uniform_int_distribution<int> pick(0, int(c.x1.rows()) - 1);  // cloth points only
   for (const double step : {margin / 4, 0.03}) {
     std::fill(moved.begin(), moved.end(), char(0));
-    std::uniform_real_distribution<double> by(-step, step);
+    std::uniform_real_distribution<double> by(-step, std::max(step, 1e-9));
     for (int k = 0; k < 5; ++k) {
       const int i = pick(rng);
       for (int a = 0; a < 3; ++a) e.x1(i, a) += by(rng);

@@ -31,7 +31,9 @@
 /// Cost: build (once per surface) O(m log m) where a node's loop comes from gluing its
 /// children's, up to O(m log^2 m) where it is traced from the triangles (a tree split in a
 /// crumpled shape); refit O(m); a search O(nodes visited), which for a cloth that bends smoothly
-/// grows with the length of the borders between its skipped patches, not with its area.
+/// grows with the length of the borders between its skipped patches, not with its area. After
+/// some corners move again, a refit of the triangles that hold them and a search of the pairs
+/// that involve one cost O(m) flag tests plus the changed nodes, and the nodes visited above them.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -63,6 +65,8 @@ class NormalConeTree {
     const int m = int(triangles_.size());
     order_.resize(std::size_t(m));
     centres_.resize(std::size_t(m));
+    leaf_of_.resize(std::size_t(m));
+    changed_.assign(std::size_t(std::max(0, 2 * m - 1)), 1);
     for (int t = 0; t < m; ++t) {
       order_[std::size_t(t)] = t;
       const Triangle& c = triangles_[std::size_t(t)];
@@ -77,24 +81,35 @@ class NormalConeTree {
   /// @brief The number of nodes (2 m - 1 for m > 0 triangles).
   [[nodiscard]] std::size_t size() const { return nodes_.size(); }
 
-  /// @brief Each node's box over x0 -> x1 grown by g [m], and its normal cone.
+  /// @brief Each node's box over x0 -> x1 grown by g [m], and its normal cone. Every triangle
+  /// counts as changed (see the overload below).
   void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g) {
+    changed_.assign(nodes_.size(), 1);
+    for (std::size_t k = nodes_.size(); k-- > 0;) fit(x0, x1, g, nodes_[k]);
+  }
+
+  /// @brief refit() of the nodes whose patch holds a triangle t with changed[t] != 0 (one flag
+  /// per triangle given to build()), cost O(nodes) flag tests plus O(changed nodes) fits. The
+  /// other nodes keep the last refit's boxes and cones, which must be those of this x0 and g and
+  /// of x1 at the corners of every unchanged triangle.
+  void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g,
+             const std::vector<char>& changed) {
+    changed_.assign(nodes_.size(), 0);
+    for (std::size_t t = 0; t < leaf_of_.size(); ++t)
+      if (changed[t]) changed_[std::size_t(leaf_of_[t])] = 1;
+    // Preorder puts children after their parent: backwards, a node after its children.
     for (std::size_t k = nodes_.size(); k-- > 0;) {
       Node& n = nodes_[k];
-      if (n.left < 0) {
-        leaf(x0, x1, g, n);
-        continue;
-      }
-      const Node& l = nodes_[std::size_t(n.left)];
-      const Node& r = nodes_[std::size_t(n.right)];
-      n.box = {l.box.lo.cwiseMin(r.box.lo), l.box.hi.cwiseMax(r.box.hi)};
-      merge(l, r, n);
+      if (n.left >= 0)
+        changed_[k] = changed_[std::size_t(n.left)] || changed_[std::size_t(n.right)];
+      if (changed_[k]) fit(x0, x1, g, n);
     }
   }
 
   /// @brief Calls visit(s, t) once for each pair of distinct triangles (indices into the
   /// triangles given to build()) whose boxes from the last refit() overlap, except pairs inside a
-  /// patch that cannot touch itself over x0 -> x1 (the motion given to refit()).
+  /// patch that cannot touch itself over x0 -> x1 (the motion given to refit()), and pairs of
+  /// two triangles that the last refit() did not change.
   template <class Visit>
   void self_pairs(const Points<Scalar>& x0, const Points<Scalar>& x1, Visit&& visit) const {
     if (!nodes_.empty()) self(x0, x1, 0, visit);
@@ -105,7 +120,8 @@ class NormalConeTree {
     return {order_.begin() + nodes_[k].begin, order_.begin() + nodes_[k].end};
   }
 
-  /// @brief Calls visit(t) for each triangle t whose box from the last refit() overlaps b.
+  /// @brief Calls visit(t) for each triangle t that the last refit() changed and whose box
+  /// overlaps b.
   template <class Visit>
   void query(const Box& b, Visit&& visit) const {
     if (!nodes_.empty()) query(0, b, visit);
@@ -160,6 +176,8 @@ class NormalConeTree {
       const int right = split(x, m, e);
       nodes_[std::size_t(id)].left = left;
       nodes_[std::size_t(id)].right = right;
+    } else {
+      leaf_of_[std::size_t(order_[std::size_t(b)])] = id;
     }
     contour(x, nodes_[std::size_t(id)]);
     return id;
@@ -298,6 +316,18 @@ class NormalConeTree {
     return ok;
   }
 
+  // The node's box and cone from its triangle's motion (a leaf) or its children's.
+  void fit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n) const {
+    if (n.left < 0) {
+      leaf(x0, x1, g, n);
+      return;
+    }
+    const Node& l = nodes_[std::size_t(n.left)];
+    const Node& r = nodes_[std::size_t(n.right)];
+    n.box = {l.box.lo.cwiseMin(r.box.lo), l.box.hi.cwiseMax(r.box.hi)};
+    merge(l, r, n);
+  }
+
   // A leaf: its triangle's swept box and the cone about its Bernstein normals' mean direction.
   void leaf(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n) const {
     const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
@@ -397,7 +427,7 @@ class NormalConeTree {
   template <class Visit>
   void self(const Points<Scalar>& x0, const Points<Scalar>& x1, int k, Visit& visit) const {
     const Node& n = nodes_[std::size_t(k)];
-    if (n.left < 0 || star(x0, x1, n)) return;
+    if (!changed_[std::size_t(k)] || n.left < 0 || star(x0, x1, n)) return;
     self(x0, x1, n.left, visit);
     self(x0, x1, n.right, visit);
     pair(n.left, n.right, visit);
@@ -406,7 +436,7 @@ class NormalConeTree {
   template <class Visit>
   void query(int k, const Box& b, Visit& visit) const {
     const Node& n = nodes_[std::size_t(k)];
-    if (!n.box.overlaps(b)) return;
+    if (!changed_[std::size_t(k)] || !n.box.overlaps(b)) return;
     if (n.left < 0) {
       visit(order_[std::size_t(n.begin)]);
       return;
@@ -419,7 +449,7 @@ class NormalConeTree {
   void pair(int i, int j, Visit& visit) const {
     const Node& a = nodes_[std::size_t(i)];
     const Node& b = nodes_[std::size_t(j)];
-    if (!a.box.overlaps(b.box)) return;
+    if (!(changed_[std::size_t(i)] || changed_[std::size_t(j)]) || !a.box.overlaps(b.box)) return;
     if (a.left < 0 && b.left < 0) {
       visit(order_[std::size_t(a.begin)], order_[std::size_t(b.begin)]);
       return;
@@ -436,6 +466,8 @@ class NormalConeTree {
   std::vector<Triangle> triangles_;
   std::vector<Node> nodes_;
   std::vector<int> order_, loops_;
+  std::vector<int> leaf_of_;   // a triangle's leaf
+  std::vector<char> changed_;  // nodes the last refit() changed
   std::vector<V3> centres_;
   // build()'s scratch.
   std::vector<int> position_;  // a vertex's place in a loop, or -1

@@ -11,14 +11,18 @@
 /// point, and pairs SurfaceElements::pair_gap() excludes (obstacle with obstacle; cloth with
 /// cloth without self-collision) are left out.
 ///
-/// **With self-collision** every call lists the candidates of the current motion afresh through
-/// contact/broad_phase/normal_cone_tree.hpp, built once per surface: the tree's overlapping pairs
-/// of the cloth's triangles give the cloth's pairs (each point and edge paired from one triangle
-/// that has it), and the obstacles' elements are queried against the tree's boxes. One more kind
-/// of pair is left out: a point and a triangle, or two edges, inside a patch of the cloth that
-/// cannot touch itself over the step (normal cone under 90 degrees, star-shaped boundary: see
-/// that file). Cost O(triangles + nodes visited + pairs log pairs) a call; a cloth that bends
-/// smoothly has few pairs, as its neighbours on one layer are not paired.
+/// **With self-collision** full() and next_step() list the candidates of the current motion
+/// afresh through contact/broad_phase/normal_cone_tree.hpp, built once per surface: the tree's
+/// overlapping pairs of the cloth's triangles give the cloth's pairs (each point and edge paired
+/// from one triangle that has it), and the obstacles' elements are queried against the tree's
+/// boxes. One more kind of pair is left out: a point and a triangle, or two edges, inside a patch
+/// of the cloth that cannot touch itself over the step (normal cone under 90 degrees, star-shaped
+/// boundary: see that file). Cost O(triangles + nodes visited + pairs log pairs); a cloth that
+/// bends smoothly has few pairs, as its neighbours on one layer are not paired. refresh() lists
+/// again only the pairs of the elements whose points' end positions changed, refitting the tree
+/// above their triangles alone; a pair of two unchanged elements is kept, or stays out when the
+/// tree skipped it for the same motion of its points (cost O(elements) flag tests, plus the
+/// changed part of the tree).
 ///
 /// **Without self-collision** every pair has an obstacle's element and one of the cloth, and the
 /// list is kept from step to step. Each element keeps a stored box that holds its current one: the
@@ -53,6 +57,7 @@
 
 #include "massspring/contact/broad_phase/box_hash.hpp"
 #include "massspring/contact/broad_phase/normal_cone_tree.hpp"
+#include "massspring/contact/response/detail/element_boxes.hpp"
 #include "massspring/contact/response/surface_elements.hpp"
 
 namespace massspring::contact {
@@ -131,7 +136,11 @@ class SurfaceCandidates {
   /// changed (see the file comment); needs a full() or next_step() on the same elements since
   /// their setup.
   void refresh(const Elements& e, const std::vector<char>& moved) {
-    if (self_seen_ || !points_.update(e, e.points, 1, moved, grow_, margin_) ||
+    if (self_seen_) {
+      tree_refresh(e, moved);
+      return;
+    }
+    if (!points_.update(e, e.points, 1, moved, grow_, margin_) ||
         !triangles_.update(e, e.triangles, 3, moved, grow_, margin_) ||
         !edges_.update(e, e.edges, 2, moved, grow_, margin_)) {
       full(e, grow_, margin_);
@@ -155,161 +164,14 @@ class SurfaceCandidates {
       edges_.query(edges_.is_cloth(a), edges_.stored[std::size_t(a)], [&](int b) {
         if (!edges_.moved[std::size_t(b)] || b > a) add_edge_edge(e, a, b);
       });
-    // The new pairs in order, merged with the kept ones.
-    if (pairs_.size() == kept) return;
-    const auto middle = pairs_.begin() + std::ptrdiff_t(kept);
-    std::sort(middle, pairs_.end(), before);
-    merged_.resize(pairs_.size());  // keeps its capacity: no allocation after the first steps
-    std::merge(pairs_.begin(), middle, middle, pairs_.end(), merged_.begin(), before);
-    pairs_.swap(merged_);
+    merge_new(kept);
   }
 
   /// @brief How many times full() ran since construction.
   [[nodiscard]] long full_count() const { return full_count_; }
 
  private:
-  // Some elements of a layer and a hash of their stored boxes, built when first queried.
-  struct Subset {
-    std::vector<int> ids;
-    std::vector<Box> boxes;  // stored[ids[j]] as they were when hashed
-    BoxHash<Scalar> hash;
-    bool hashed = false;
-
-    void clear() {
-      ids.clear();
-      hashed = false;
-    }
-    // Calls visit(i) for each element i of the subset whose box, as hashed, overlaps q.
-    template <class Visit>
-    void query(const std::vector<Box>& stored, Scalar cell, const Box& q, Visit&& visit) {
-      if (ids.empty()) return;
-      if (!hashed) {
-        boxes.resize(ids.size());
-        for (std::size_t j = 0; j < ids.size(); ++j) boxes[j] = stored[std::size_t(ids[j])];
-        hash.build(boxes, cell);
-        hashed = true;
-      }
-      hash.query(q, [&](int j) { visit(ids[std::size_t(j)]); });
-    }
-  };
-
-  // The boxes and hashes of one kind of element (points, edges or triangles): the cloth's
-  // elements [0, cloth), then the obstacles'. Without self-collision a cloth element pairs only
-  // with an obstacle's, so its queries read the obstacles' hashes alone; an obstacle's read the
-  // hash of every element.
-  struct Layer {
-    std::vector<Box> stored;  // ahead(), grown by grow_of() + margin; hashed unless escaped
-    std::vector<char> moved, escaped;  // moved: escaped in the last update(), pairs to list
-    std::vector<int> moved_ids;
-    std::size_t cloth = 0;
-    BoxHash<Scalar> hash;  // every element's stored box as full() left it
-    bool hashed = false;
-    Subset obstacles;          // the obstacles' elements, boxes as full() left them
-    Subset escaped_all;        // the escaped elements
-    Subset escaped_obstacles;  // the escaped obstacles' elements
-    Scalar cell = 1;
-
-    [[nodiscard]] bool is_cloth(int i) const { return std::size_t(i) < cloth; }
-
-    // Hashes every element's stored box, unless done since the last full().
-    void hash_all() {
-      if (hashed) return;
-      hash.build(stored, cell);
-      hashed = true;
-      // The escaped ones, a part of these, fit in as much room.
-      escaped_all.hash.reserve(stored.size(), hash.entries());
-    }
-    // Makes room for the hash of the escaped obstacles' elements, a part of the obstacles'.
-    void reserve_escaped() {
-      if (obstacles.hashed)
-        escaped_obstacles.hash.reserve(obstacles.ids.size(), obstacles.hash.entries());
-    }
-
-    // The box of the element's points at x0, x1 and x1 + (x1 - x0), grown by g.
-    static Box ahead(const Elements& e, const Element& element, int count, Scalar g) {
-      Box b = e.swept(element, count, g);
-      for (int k = 0; k < count; ++k) {
-        const int i = element.p[std::size_t(k)];
-        const Vector3<Scalar> next = 2 * e.p1(i) - e.p0(i);
-        b.lo = b.lo.cwiseMin(next - Vector3<Scalar>::Constant(g));
-        b.hi = b.hi.cwiseMax(next + Vector3<Scalar>::Constant(g));
-      }
-      return b;
-    }
-
-    // Stores each element's box: ahead() grown by grow_of() and the margin, or (`swept_only`)
-    // the box of the step's sweep grown by grow_of().
-    void store(const Elements& e, const std::vector<Element>& elements, int count, Scalar grow,
-               Scalar margin, bool swept_only = false) {
-      stored.resize(elements.size());
-      for (std::size_t i = 0; i < elements.size(); ++i)
-        stored[i] = swept_only
-                        ? e.swept(elements[i], count, e.grow_of(elements[i], grow))
-                        : ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
-      escaped.assign(elements.size(), 0);
-      cloth = 0;
-      while (cloth < elements.size() && elements[cloth].owner < 0) ++cloth;
-      hashed = false;
-      obstacles.clear();
-      for (std::size_t i = cloth; i < elements.size(); ++i) obstacles.ids.push_back(int(i));
-      escaped_all.clear();
-      escaped_obstacles.clear();
-      // refresh()'s arrays, so that the steps after the first allocate nothing.
-      moved.reserve(elements.size());
-      moved_ids.reserve(elements.size());
-      for (Subset* subset : {&escaped_all, &escaped_obstacles}) {
-        subset->ids.reserve(elements.size());
-        subset->boxes.reserve(elements.size());
-      }
-    }
-    // Flags the elements with a moved point whose current box left the stored one, and stores
-    // their box again (ahead()); false when too many have escaped their stored boxes.
-    bool update(const Elements& e, const std::vector<Element>& elements, int count,
-                const std::vector<char>& moved_points, Scalar grow, Scalar margin) {
-      moved.assign(elements.size(), 0);
-      moved_ids.clear();
-      for (std::size_t i = 0; i < elements.size(); ++i) {
-        bool any = false;
-        for (int k = 0; k < count; ++k)
-          any = any || moved_points[std::size_t(elements[i].p[std::size_t(k)])];
-        if (!any) continue;
-        const Box now = e.swept(elements[i], count, e.grow_of(elements[i], grow));
-        if (inside(now, stored[i])) continue;
-        moved[i] = 1;
-        moved_ids.push_back(int(i));
-        // A box stored again, or a new escaped element: the hashes that hold it are stale.
-        const bool obstacle = !is_cloth(int(i));
-        if (!escaped[i]) {
-          escaped_all.ids.push_back(int(i));
-          if (obstacle) escaped_obstacles.ids.push_back(int(i));
-        }
-        escaped[i] = 1;
-        escaped_all.hashed = false;
-        if (obstacle) escaped_obstacles.hashed = false;
-        stored[i] = ahead(e, elements[i], count, e.grow_of(elements[i], grow) + margin);
-      }
-      return escaped_all.ids.size() <= std::max<std::size_t>(64, elements.size() / 4);
-    }
-    // Calls visit(i) for each element i whose stored box overlaps q and that can pair with an
-    // element of the cloth (`from_cloth`: the obstacles' elements) or of an obstacle (every
-    // element): the ones in place through a hash of full()'s boxes, the escaped ones through a
-    // second hash.
-    template <class Visit>
-    void query(bool from_cloth, const Box& q, Visit&& visit) {
-      const auto in_place = [&](int i) {
-        if (!escaped[std::size_t(i)]) visit(i);
-      };
-      if (from_cloth) {
-        obstacles.query(stored, cell, q, in_place);
-        escaped_obstacles.query(stored, cell, q, visit);
-        return;
-      }
-      hash_all();
-      hash.query(q, in_place);
-      escaped_all.query(stored, cell, q, visit);
-    }
-  };
-
+  using Layer = detail::ElementLayer<Scalar>;
   // Makes room for the refresh() and next_step() that follow full(): the flags of every point,
   // and twice the pairs listed, in the list and in the merge's scratch.
   void reserve_refresh(const Elements& e) {
@@ -317,6 +179,16 @@ class SurfaceCandidates {
     const std::size_t pairs = std::max<std::size_t>(64, 2 * pairs_.size());
     pairs_.reserve(pairs);
     merged_.reserve(pairs);
+  }
+
+  // Sorts the pairs listed after the first `kept` (in order) and merges the two runs.
+  void merge_new(std::size_t kept) {
+    if (pairs_.size() == kept) return;
+    const auto middle = pairs_.begin() + std::ptrdiff_t(kept);
+    std::sort(middle, pairs_.end(), before);
+    merged_.resize(pairs_.size());  // keeps its capacity: no allocation after the first steps
+    std::merge(pairs_.begin(), middle, middle, pairs_.end(), merged_.begin(), before);
+    pairs_.swap(merged_);
   }
 
   // The order of the list: by kind, then first element, then second.
@@ -376,86 +248,141 @@ class SurfaceCandidates {
         triangle_edges_[t][std::size_t(k)] = a;
         if (a >= 0 && edge_owner_[std::size_t(a)] < 0) edge_owner_[std::size_t(a)] = int(t);
       }
+    // The points whose motion tree_refresh() leaves to full(): the obstacles', and the
+    // cloth's on a point or edge that no cloth triangle lists.
+    loose_.assign(std::size_t(e.x0.rows()), 0);
+    for (std::size_t i = 0; i < loose_.size(); ++i) loose_[i] = e.owner[i] >= 0;
+    for (std::size_t v = 0; v < e.points.size(); ++v)
+      if (point_owner_[v] < 0) loose_[std::size_t(e.points[v].p[0])] = 1;
+    for (std::size_t a = 0; a < e.edges.size(); ++a)
+      if (edge_owner_[a] < 0)
+        for (int k = 0; k < 2; ++k) loose_[std::size_t(e.edges[a].p[std::size_t(k)])] = 1;
     tree_.build(e.x0, tree_triangles_);
   }
 
-  // full() with self-collision through the tree: the boxes of the step's sweeps (no margin:
-  // every refresh() and next_step() comes back here); the obstacles' elements queried against
-  // the tree's triangles, the cloth's pairs from the tree's pairs of triangles. A cloth point is
-  // paired from the triangle that lists it, an edge from its triangle likewise, so each pair comes
-  // from one pair of triangles: the one holding both elements' boxes (a triangle's box holds its
-  // corners' and sides'). A pair the tree skips lies in a patch that cannot touch itself over the
-  // step.
+  // full() with self-collision through the tree: the boxes of the step's sweeps (no margin),
+  // every element changed, and the pairs listed by tree_pairs().
   void tree_full(const Elements& e, Scalar grow) {
     points_.store(e, e.points, 1, grow, 0, true);
     triangles_.store(e, e.triangles, 3, grow, 0, true);
     edges_.store(e, e.edges, 2, grow, 0, true);
-    pairs_.clear();
     tree_.refit(e.x0, e.x1, grow);
-    // The obstacles' elements, and any cloth point or edge on no triangle, against the cloth's
-    // triangles and their points and edges, through the tree's boxes; those among themselves
-    // one by one.
+    fitted_ = e.x1;  // same size after the first steps: no allocation
+    for (Layer* layer : {&points_, &triangles_, &edges_})
+      layer->moved.assign(layer->stored.size(), 1);
+    pairs_.clear();
+    tree_pairs(e);
+    std::sort(pairs_.begin(), pairs_.end(), before);
+    reserve_refresh(e);
+  }
+  // refresh() with self-collision: a cloth point flagged in `moved` whose end position differs
+  // from the one its elements were last fitted to has changed, and so has each element with a
+  // changed point. Their boxes are taken again, the tree refitted above their triangles, their
+  // pairs dropped and listed again by tree_pairs(); the other pairs are kept. A pair of two
+  // unchanged elements keeps its elements' motion, so a patch that the tree skipped for that
+  // motion still cannot bring them together. An obstacle's point, or a cloth point on an element
+  // that no cloth triangle lists, that has changed: full() instead.
+  void tree_refresh(const Elements& e, const std::vector<char>& moved) {
+    bool any = false;
+    changed_.assign(std::size_t(e.x1.rows()), 0);
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      if (!moved[i] || fitted_.row(Eigen::Index(i)) == e.x1.row(Eigen::Index(i))) continue;
+      if (loose_[i]) {
+        full(e, grow_, margin_);
+        return;
+      }
+      fitted_.row(Eigen::Index(i)) = e.x1.row(Eigen::Index(i));
+      changed_[i] = 1;
+      any = true;
+    }
+    if (!any) return;
+    const auto mark = [&](Layer& layer, const std::vector<Element>& elements, int count) {
+      for (std::size_t k = 0; k < elements.size(); ++k) {
+        bool hit = false;
+        for (int j = 0; j < count; ++j)
+          hit = hit || changed_[std::size_t(elements[k].p[std::size_t(j)])];
+        layer.moved[k] = hit;
+        if (hit) layer.stored[k] = e.swept(elements[k], count, e.grow_of(elements[k], grow_));
+      }
+    };
+    mark(points_, e.points, 1);
+    mark(triangles_, e.triangles, 3);
+    mark(edges_, e.edges, 2);
+    tree_.refit(e.x0, e.x1, grow_, triangles_.moved);
+    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
+                                [&](const ElementPair& q) { return changed(q); }),
+                 pairs_.end());
+    const std::size_t kept = pairs_.size();  // still in order
+    tree_pairs(e);
+    merge_new(kept);
+  }
+  // Whether the pair has an element that the last tree_full() or tree_refresh() changed.
+  [[nodiscard]] bool changed(const ElementPair& q) const {
+    return q.kind == 0 ? points_.moved[std::size_t(q.a)] || triangles_.moved[std::size_t(q.b)]
+                       : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
+  }
+  // Appends every candidate with a changed element. The obstacles' elements, and any cloth point
+  // or edge on no triangle, against the cloth's triangles and their points and edges through the
+  // tree's boxes (the tree visits only its changed triangles); those among themselves one by
+  // one. The cloth's pairs from the tree's pairs of triangles: a cloth point is paired from the
+  // triangle that lists it, an edge from its triangle likewise, so each pair comes from one pair
+  // of triangles, the one holding both elements' boxes (a triangle's box holds its corners' and
+  // sides'). A pair the tree skips lies in a patch that cannot touch itself over the step.
+  void tree_pairs(const Elements& e) {
+    const auto point_triangle = [&](int v, int t) {
+      if ((points_.moved[std::size_t(v)] || triangles_.moved[std::size_t(t)]) &&
+          points_.stored[std::size_t(v)].overlaps(triangles_.stored[std::size_t(t)]))
+        add_point_triangle(e, v, t);
+    };
+    const auto edge_edge = [&](int a, int b) {
+      if ((edges_.moved[std::size_t(a)] || edges_.moved[std::size_t(b)]) &&
+          edges_.stored[std::size_t(a)].overlaps(edges_.stored[std::size_t(b)]))
+        add_edge_edge(e, a, b);
+    };
     for (std::size_t v = 0; v < e.points.size(); ++v)
       if (e.points[v].owner >= 0 || point_owner_[v] < 0) {
-        tree_.query(points_.stored[v], [&](int t) {
-          if (points_.stored[v].overlaps(triangles_.stored[std::size_t(t)]))
-            add_point_triangle(e, int(v), t);
-        });
+        tree_.query(points_.stored[v], [&](int t) { point_triangle(int(v), t); });
         if (e.points[v].owner < 0)
           for (std::size_t s = tree_triangles_.size(); s < e.triangles.size(); ++s)
-            if (points_.stored[v].overlaps(triangles_.stored[s]))
-              add_point_triangle(e, int(v), int(s));
+            point_triangle(int(v), int(s));
       }
     for (std::size_t s = 0; s < e.triangles.size(); ++s)
       if (e.triangles[s].owner >= 0)
         tree_.query(triangles_.stored[s], [&](int t) {
           for (int i : tree_triangles_[std::size_t(t)]) {
             const int v = point_of_[std::size_t(i)];
-            if (v >= 0 && point_owner_[std::size_t(v)] == t &&
-                points_.stored[std::size_t(v)].overlaps(triangles_.stored[s]))
-              add_point_triangle(e, v, int(s));
+            if (v >= 0 && point_owner_[std::size_t(v)] == t) point_triangle(v, int(s));
           }
         });
     loose_edges_.clear();
     for (std::size_t a = 0; a < e.edges.size(); ++a)
       if (e.edges[a].owner >= 0 || edge_owner_[a] < 0) {
-        for (int b : loose_edges_)
-          if (edges_.stored[a].overlaps(edges_.stored[std::size_t(b)])) add_edge_edge(e, int(a), b);
+        for (int b : loose_edges_) edge_edge(int(a), b);
         loose_edges_.push_back(int(a));
         tree_.query(edges_.stored[a], [&](int t) {
           for (int b : triangle_edges_[std::size_t(t)])
-            if (b >= 0 && edge_owner_[std::size_t(b)] == t &&
-                edges_.stored[a].overlaps(edges_.stored[std::size_t(b)]))
-              add_edge_edge(e, int(a), b);
+            if (b >= 0 && edge_owner_[std::size_t(b)] == t) edge_edge(int(a), b);
         });
       }
     tree_.self_pairs(e.x0, e.x1, [&](int s, int t) {
-      corners_against(e, s, t);
-      corners_against(e, t, s);
+      corners_against(s, t, point_triangle);
+      corners_against(t, s, point_triangle);
       for (int a : triangle_edges_[std::size_t(s)]) {
         if (a < 0 || edge_owner_[std::size_t(a)] != s) continue;
         for (int b : triangle_edges_[std::size_t(t)])
-          if (b >= 0 && edge_owner_[std::size_t(b)] == t &&
-              edges_.stored[std::size_t(a)].overlaps(edges_.stored[std::size_t(b)]))
-            add_edge_edge(e, a, b);
+          if (b >= 0 && edge_owner_[std::size_t(b)] == t) edge_edge(a, b);
       }
     });
-    std::sort(pairs_.begin(), pairs_.end(), before);
-    reserve_refresh(e);
   }
   // The corners triangle s lists, against triangle t.
-  void corners_against(const Elements& e, int s, int t) {
+  template <class PointTriangle>
+  void corners_against(int s, int t, const PointTriangle& point_triangle) const {
     for (int i : tree_triangles_[std::size_t(s)]) {
       const int v = point_of_[std::size_t(i)];
-      if (v >= 0 && point_owner_[std::size_t(v)] == s &&
-          points_.stored[std::size_t(v)].overlaps(triangles_.stored[std::size_t(t)]))
-        add_point_triangle(e, v, t);
+      if (v >= 0 && point_owner_[std::size_t(v)] == s) point_triangle(v, t);
     }
   }
 
-  static bool inside(const Box& b, const Box& outer) {
-    return (outer.lo.array() <= b.lo.array()).all() && (b.hi.array() <= outer.hi.array()).all();
-  }
   void add_point_triangle(const Elements& e, int v, int t) {
     const Element& pe = e.points[std::size_t(v)];
     const Element& te = e.triangles[std::size_t(t)];
@@ -485,6 +412,8 @@ class SurfaceCandidates {
   NormalConeTree<Scalar> tree_;
   std::vector<std::array<int, 3>> tree_triangles_, triangle_edges_, edge_keys_;
   std::vector<int> point_of_, point_owner_, edge_owner_, loose_edges_;
+  Points<Scalar> fitted_;  // the end positions the tree and the stored boxes were fitted to
+  std::vector<char> loose_, changed_;  // per point: see tree_refresh()
 };
 
 }  // namespace massspring::contact
