@@ -88,10 +88,11 @@ class NormalConeTree {
     for (std::size_t k = nodes_.size(); k-- > 0;) fit(x0, x1, g, nodes_[k]);
   }
 
-  /// @brief refit() of the nodes whose patch holds a triangle t with changed[t] != 0 (one flag
-  /// per triangle given to build()), cost O(nodes) flag tests plus O(changed nodes) fits. The
-  /// other nodes keep the last refit's boxes and cones, which must be those of this x0 and g and
-  /// of x1 at the corners of every unchanged triangle.
+  /// @brief refit() of the nodes whose patch holds a triangle t with changed[t] != 0 (a flag
+  /// for each triangle given to build(), in its order; entries past them are not read), cost
+  /// O(nodes) flag tests plus O(changed nodes) fits. The other nodes keep the last refit's boxes
+  /// and cones, which must be those of this x0 and g and of x1 at the corners of every unchanged
+  /// triangle.
   void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g,
              const std::vector<char>& changed) {
     changed_.assign(nodes_.size(), 0);

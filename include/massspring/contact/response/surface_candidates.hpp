@@ -147,11 +147,7 @@ class SurfaceCandidates {
       return;
     }
     // Keep the pairs of the elements in place; query the escaped ones again.
-    const auto stale = [&](const ElementPair& q) {
-      return q.kind == 0 ? points_.moved[std::size_t(q.a)] || triangles_.moved[std::size_t(q.b)]
-                         : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
-    };
-    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), stale), pairs_.end());
+    drop_moved_pairs();
     const std::size_t kept = pairs_.size();  // still in order
     for (int v : points_.moved_ids)
       triangles_.query(points_.is_cloth(v), points_.stored[std::size_t(v)],
@@ -181,6 +177,15 @@ class SurfaceCandidates {
     merged_.reserve(pairs);
   }
 
+  // Drops the pairs with an element flagged in its layer's `moved` (their pairs are listed
+  // again); the others stay in order.
+  void drop_moved_pairs() {
+    const auto moved = [&](const ElementPair& q) {
+      return q.kind == 0 ? points_.moved[std::size_t(q.a)] || triangles_.moved[std::size_t(q.b)]
+                         : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
+    };
+    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), moved), pairs_.end());
+  }
   // Sorts the pairs listed after the first `kept` (in order) and merges the two runs.
   void merge_new(std::size_t kept) {
     if (pairs_.size() == kept) return;
@@ -309,17 +314,10 @@ class SurfaceCandidates {
     mark(triangles_, e.triangles, 3);
     mark(edges_, e.edges, 2);
     tree_.refit(e.x0, e.x1, grow_, triangles_.moved);
-    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
-                                [&](const ElementPair& q) { return changed(q); }),
-                 pairs_.end());
+    drop_moved_pairs();
     const std::size_t kept = pairs_.size();  // still in order
     tree_pairs(e);
     merge_new(kept);
-  }
-  // Whether the pair has an element that the last tree_full() or tree_refresh() changed.
-  [[nodiscard]] bool changed(const ElementPair& q) const {
-    return q.kind == 0 ? points_.moved[std::size_t(q.a)] || triangles_.moved[std::size_t(q.b)]
-                       : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
   }
   // Appends every candidate with a changed element. The obstacles' elements, and any cloth point
   // or edge on no triangle, against the cloth's triangles and their points and edges through the

@@ -59,8 +59,10 @@ struct ElementLayer {
   using Elements = SurfaceElements<Scalar>;
   using Element = typename Elements::Element;
 
-  std::vector<Box> stored;           // ahead(), grown by grow_of() + margin; hashed unless escaped
-  std::vector<char> moved, escaped;  // moved: escaped in the last update(), pairs to list
+  std::vector<Box> stored;  // ahead(), grown by grow_of() + margin; hashed unless escaped
+  // moved: the elements whose pairs are listed again (escaped in the last update(), or, with
+  // self-collision, on a point whose end position changed); escaped: since the last store().
+  std::vector<char> moved, escaped;
   std::vector<int> moved_ids;
   std::size_t cloth = 0;
   BoxHash<Scalar> hash;  // every element's stored box as full() left it
