@@ -53,6 +53,7 @@ class ContactProjection {
     point_.assign(std::size_t(nr), 0);
     base_.resize(3 * Eigen::Index(nr));
     dual_.setZero(3 * Eigen::Index(nr));
+    kept_.setZero(3 * Eigen::Index(nr));
     for (int r = 0; r < nr; ++r) {
       const int i = reduced.point[std::size_t(r)];
       point_[std::size_t(r)] = i;
@@ -105,6 +106,13 @@ class ContactProjection {
         dual_.template segment<3>(3 * Eigen::Index(r)) = u.row(point_[std::size_t(r)]).transpose();
     return -1;
   }
+
+  /// @brief Keeps a copy of the dual variables, for restore_duals(): iterations that are not the
+  /// step's (FastMassSpring's trial iterations estimating Chebyshev's rho) must not move them.
+  /// Allocates nothing.
+  void keep_duals() { kept_ = dual_; }
+  /// @brief The dual variables back to what keep_duals() copied. Allocates nothing.
+  void restore_duals() { dual_ = kept_; }
 
   /// @brief The local step of the term at the iterate x: z = P(x + u), u <- x + u - z, and
   /// rhs0 = base + w (z - u - origin) on the term's rows (x unchanged); returns E_c at x [J]
@@ -162,6 +170,7 @@ class ContactProjection {
   std::vector<int> point_;
   Vector<Scalar> base_;
   Vector<Scalar> dual_;  // u, 3 per row [m]
+  Vector<Scalar> kept_;  // keep_duals()'s copy of dual_
   const contact::ColliderSet<Scalar>* colliders_ = nullptr;
   const Scalar* x_start_ = nullptr;
   const Scalar* origin_ = nullptr;  // 3 per row [m]

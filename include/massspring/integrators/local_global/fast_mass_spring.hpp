@@ -333,12 +333,15 @@ class FastMassSpring {
   }
 
   // rho for Chebyshev, estimated from trial plain iterations from the prepared start (buffers 0
-  // and 1: prepare() must run again afterwards).
+  // and 1: prepare() must run again afterwards). The contact term's dual variables are put back
+  // afterwards: the step then starts from what it would have with rho given.
   void estimate_rho() {
     Iteration it{this};
+    contact_.keep_duals();
     rho_estimate_ = Scalar(local_global::estimate_spectral_radius(
         it, buffers_[0].data(), buffers_[1].data(), 3 * Eigen::Index(reduced_.nr),
         options.chebyshev_estimate_iterations));
+    contact_.restore_duals();
     rho_estimated_ = true;
   }
 
