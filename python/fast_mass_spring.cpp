@@ -74,8 +74,9 @@ void bind_fast_mass_spring(py::module_& m) {
       .def_readwrite("contact_weight", &Options::contact_weight,
                      "Weight alpha of contact and friction inside the iteration: alpha sqrt(m "
                      "(m + dt^2 k)) / dt^2 per point, k its springs' summed stiffness (0: at the "
-                     "end of the step; 1 with Acceleration.Anderson and InitialGuess.Inertial "
-                     "suits dt = 1/30, 0.5 plain with self-collision there).")
+                     "end of the step; 1 with Acceleration.Anderson or Acceleration.Chebyshev "
+                     "and InitialGuess.Inertial suits dt = 1/30, 0.5 plain with "
+                     "self-collision there).")
       // Removed options: assigning one names what replaces it (a force term on the system).
       .def_property(
           "external_force", [](const Options&) -> py::object { throw removed("external_force"); },

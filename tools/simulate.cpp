@@ -193,7 +193,8 @@ int main(int argc, char** argv) {
                      "alpha of contact and friction inside the solve (0: at the end of the "
                      "step only), relative to each point's sqrt(m (m + dt^2 k)) / dt^2 (k its "
                      "springs' summed stiffness). 1 suits at dt = 1/30: backward-euler, and "
-                     "fast-mass-spring with --acceleration anderson --initial-guess inertial")
+                     "fast-mass-spring with --acceleration anderson or chebyshev "
+                     "--initial-guess inertial")
           ->capture_default_str());
   fms.push_back(
       app.add_option("--acceleration", c.acceleration,
