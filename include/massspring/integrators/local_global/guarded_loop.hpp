@@ -37,6 +37,9 @@ inline bool tolerance_met(StepReport& report, double tolerance, int k, double e0
 /// @param it the solver's iteration: `double local(const Scalar* x, Scalar* w)` (the local step
 ///   at x into w's right-hand side, returning E(x)), `void global(Scalar* w)` (w = Q^-1 w, pins
 ///   restored) and `double energy(const Scalar* x)` (E(x), recording the springs' directions).
+///   What a local step updates besides w stays updated when the loop then rejects x: with
+///   FastMassSpring's contact term, a rejected iterate's dual update counts, and the plain
+///   iterate's follows it (docs/contact.md, "Contact inside the iteration", on what that does).
 /// @param acc the accelerator: `x()` the current iterate, `w()` the buffer the step writes,
 ///   `accepts(e, e_prev)`, `reject()` (back to its plain iterate, whose energy is <= e_prev),
 ///   `advance()` (the next iterate from w = G(x)), and `fallback()` (the plain iterate to return
