@@ -149,7 +149,7 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
     case Kind::FastMassSpringChebyshevInSolve: {
       massspring::FastMassSpringOptions<double> o;
       o.iterations = fms_iterations;
-      // A fixed rho: the estimate (100 trial iterations) returns 0 ("none": the plain iteration)
+      // A fixed rho: the estimate (100 trial iterations) returns 0 ("none": no acceleration)
       // when the plain iteration converges to rounding within them, as it does in these soft
       // scenes, and the acceleration would not be exercised.
       o.chebyshev_rho = 0.5;
