@@ -8,7 +8,7 @@
 /// boxes' centres (the median when that leaves fewer than an eighth on one side, so the depth
 /// stays O(log m)); a leaf holds one triangle. Each node is a patch of the surface. Per step,
 /// refit() gives each node the box of its triangles' straight-line sweeps x0 -> x1, grown by g,
-/// and a cone of directions that holds every normal of its triangles over the whole step.
+/// and the range of its triangles' normals over the whole step along seven fixed directions.
 ///
 /// **Why a patch may be skipped** (Volino and Magnenat-Thalmann 1994, "Efficient self-collision
 /// detection on smoothly discretized surface animations using geometrical shape regularity";
@@ -25,8 +25,19 @@
 /// boundary edge p -> q, again a
 /// quadratic checked on its Bernstein coefficients), the projection is one-to-one at every t, so
 /// no two points of the patch ever meet: no point crosses a triangle and no edge crosses an edge
-/// of the patch during the step. Such a patch is not searched inside. The thresholds (cosine
-/// above 1e-6, star coefficients above 1e-9 of their scale) keep rounding on the safe side.
+/// of the patch during the step. Such a patch is not searched inside.
+///
+/// **The axis.** Each node keeps, for the seven directions e = (1,0,0), (0,1,0), (0,0,1),
+/// (1,1,1), (1,1,-1), (1,-1,1), (-1,1,1), the least and greatest e . Bk over its triangles (the
+/// bounds of a discrete orientation polytope, Klosowski et al. 1998, "Efficient collision
+/// detection using bounding volume hierarchies of k-DOPs", here of the normals rather than of
+/// the points). A parent's bounds are its children's least and greatest: exact for the union,
+/// with no rounding. When some e has e . Bk > 0 (or < 0) for all of a patch's Bk, a = e / |e| (or
+/// -e / |e|) is an axis for the test above, and the node takes the one whose least a . Bk is the
+/// largest. Every direction lies within 36.2 degrees of one of the fourteen axes +-e, so a patch
+/// whose normals stay within 53 degrees of a common direction always has an axis. Each e . Bk is
+/// lowered (raised) by 1e-6 |e|_1 |Bk|_1 before it counts, a cosine margin of 1e-6 that keeps
+/// rounding on the safe side; the star coefficients must exceed 1e-9 of their scale.
 ///
 /// Cost: build (once per surface) O(m log m) where a node's loop comes from gluing its
 /// children's, up to O(m log^2 m) where it is traced from the triangles (a tree split in a
@@ -40,6 +51,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -76,23 +88,24 @@ class NormalConeTree {
     nodes_.reserve(std::size_t(std::max(0, 2 * m - 1)));
     loops_.reserve(std::size_t(8 * m));
     if (m > 0) split(x, 0, m);
+    normals_.resize(nodes_.size());
   }
 
   /// @brief The number of nodes (2 m - 1 for m > 0 triangles).
   [[nodiscard]] std::size_t size() const { return nodes_.size(); }
 
-  /// @brief Each node's box over x0 -> x1 grown by g [m], and its normal cone. Every triangle
+  /// @brief Each node's box over x0 -> x1 grown by g [m], and its normal bounds. Every triangle
   /// counts as changed (see the overload below).
   void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g) {
     changed_.assign(nodes_.size(), 1);
-    for (std::size_t k = nodes_.size(); k-- > 0;) fit(x0, x1, g, nodes_[k]);
+    for (std::size_t k = nodes_.size(); k-- > 0;) fit(x0, x1, g, k);
   }
 
   /// @brief refit() of the nodes whose patch holds a triangle t with changed[t] != 0 (a flag
   /// for each triangle given to build(), in its order; entries past them are not read), cost
   /// O(nodes) flag tests plus O(changed nodes) fits. The other nodes keep the last refit's boxes
-  /// and cones, which must be those of this x0 and g and of x1 at the corners of every unchanged
-  /// triangle.
+  /// and normal bounds, which must be those of this x0 and g and of x1 at the corners of every
+  /// unchanged triangle.
   void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g,
              const std::vector<char>& changed) {
     changed_.assign(nodes_.size(), 0);
@@ -100,10 +113,10 @@ class NormalConeTree {
       if (changed[t]) changed_[std::size_t(leaf_of_[t])] = 1;
     // Preorder puts children after their parent: backwards, a node after its children.
     for (std::size_t k = nodes_.size(); k-- > 0;) {
-      Node& n = nodes_[k];
+      const Node& n = nodes_[k];
       if (n.left >= 0)
         changed_[k] = changed_[std::size_t(n.left)] || changed_[std::size_t(n.right)];
-      if (changed_[k]) fit(x0, x1, g, n);
+      if (changed_[k]) fit(x0, x1, g, k);
     }
   }
 
@@ -132,7 +145,7 @@ class NormalConeTree {
   /// comment for the motion given to the last refit().
   [[nodiscard]] bool cannot_touch_itself(const Points<Scalar>& x0, const Points<Scalar>& x1,
                                          std::size_t k) const {
-    return star(x0, x1, nodes_[k]);
+    return star(x0, x1, k);
   }
 
  private:
@@ -142,8 +155,10 @@ class NormalConeTree {
     int loop_begin = 0, loop_end = 0;  // boundary loop in loops_
     int centre = -1;  // the triangle whose centroid is the star's centre; -1: not a disk
     Box box;
-    V3 axis = V3::Zero();
-    Scalar cos = -1, sin = 0;  // half-angle of the cone; cos <= 0: no cone
+  };
+  // A node's least and greatest e . Bk for each of the seven directions (the file comment).
+  struct Normals {
+    std::array<Scalar, 7> low, high;
   };
 
   static V3 row(const Points<Scalar>& x, int i) { return x.row(i).transpose(); }
@@ -317,20 +332,28 @@ class NormalConeTree {
     return ok;
   }
 
-  // The node's box and cone from its triangle's motion (a leaf) or its children's.
-  void fit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n) const {
+  // Node k's box and normal bounds from its triangle's motion (a leaf) or its children's.
+  void fit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, std::size_t k) {
+    Node& n = nodes_[k];
     if (n.left < 0) {
-      leaf(x0, x1, g, n);
+      leaf(x0, x1, g, n, normals_[k]);
       return;
     }
-    const Node& l = nodes_[std::size_t(n.left)];
-    const Node& r = nodes_[std::size_t(n.right)];
-    n.box = {l.box.lo.cwiseMin(r.box.lo), l.box.hi.cwiseMax(r.box.hi)};
-    merge(l, r, n);
+    const std::size_t l = std::size_t(n.left), r = std::size_t(n.right);
+    n.box = {nodes_[l].box.lo.cwiseMin(nodes_[r].box.lo),
+             nodes_[l].box.hi.cwiseMax(nodes_[r].box.hi)};
+    Normals& b = normals_[k];
+    for (std::size_t j = 0; j < 7; ++j) {
+      b.low[j] = std::min(normals_[l].low[j], normals_[r].low[j]);
+      b.high[j] = std::max(normals_[l].high[j], normals_[r].high[j]);
+    }
   }
 
-  // A leaf: its triangle's swept box and the cone about its Bernstein normals' mean direction.
-  void leaf(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n) const {
+  // A leaf: its triangle's swept box, and the bounds of e . Bk over its Bernstein normals, each
+  // widened by the rounding margin of the file comment. A normal that is not finite leaves the
+  // bounds unbounded, so that no axis holds.
+  void leaf(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n,
+            Normals& b) const {
     const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
     const V3 a0 = row(x0, c[0]), b0 = row(x0, c[1]), c0 = row(x0, c[2]);
     const V3 a1 = row(x1, c[0]), b1 = row(x1, c[1]), c1 = row(x1, c[2]);
@@ -340,81 +363,63 @@ class NormalConeTree {
     n.box.hi.array() += g;
     const V3 e0 = b0 - a0, f0 = c0 - a0, e1 = b1 - a1, f1 = c1 - a1;
     const std::array<V3, 3> bern = {e0.cross(f0), (e0.cross(f1) + e1.cross(f0)) / 2, e1.cross(f1)};
-    n.cos = -1;
-    std::array<Scalar, 3> len;
-    V3 axis = V3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      len[std::size_t(k)] = bern[std::size_t(k)].norm();
-      if (!(len[std::size_t(k)] > 0)) return;
-      axis += bern[std::size_t(k)] / len[std::size_t(k)];
+    constexpr Scalar inf = std::numeric_limits<Scalar>::infinity();
+    b.low.fill(inf);
+    b.high.fill(-inf);
+    for (const V3& v : bern) {
+      const Scalar x = v(0), y = v(1), z = v(2);
+      const Scalar m = Scalar(1e-6) * (std::abs(x) + std::abs(y) + std::abs(z));
+      if (!(m < inf)) {
+        b.low.fill(-inf);
+        b.high.fill(inf);
+        return;
+      }
+      const std::array<Scalar, 7> p = {x, y, z, x + y + z, x + y - z, x - y + z, y + z - x};
+      for (std::size_t j = 0; j < 7; ++j) {
+        const Scalar mj = j < 3 ? m : 3 * m;  // |e|_1 |Bk|_1 1e-6
+        b.low[j] = std::min(b.low[j], p[j] - mj);
+        b.high[j] = std::max(b.high[j], p[j] + mj);
+      }
     }
-    const Scalar norm = axis.norm();
-    if (!(norm > 0)) return;
-    axis /= norm;
-    Scalar cos = 1;
-    for (int k = 0; k < 3; ++k)
-      cos = std::min(cos, axis.dot(bern[std::size_t(k)]) / len[std::size_t(k)]);
-    set_cone(n, axis, cos);
   }
 
-  // The smallest cone that holds both children's: its axis on the arc from the left axis a1 to
-  // the right one a2 (angle phi apart), turned by beta = (phi + t2 - t1) / 2 from a1 (t1, t2 the
-  // half-angles), found from cosines and sines alone (sums and half angles); one child's cone
-  // when it holds the other's. Whatever rounding does to that axis, the half-angle is then
-  // bounded as the larger of angle(axis, child axis) + child half-angle, by
-  // cos(u + v) = cos u cos v - sin u sin v. No cone when a child has none or the angle reaches
-  // 90 degrees.
-  static void merge(const Node& l, const Node& r, Node& n) {
-    n.cos = -1;
-    if (!(l.cos > 0 && r.cos > 0)) return;
-    const Scalar cphi = l.axis.dot(r.axis), sphi = l.axis.cross(r.axis).norm();
-    // cos and sin of phi + t2 - t1 and of phi + t1 - t2 (whether a cone holds the other).
-    const Scalar c21 =
-        cphi * (r.cos * l.cos + r.sin * l.sin) - sphi * (r.sin * l.cos - r.cos * l.sin);
-    const Scalar s21 =
-        sphi * (r.cos * l.cos + r.sin * l.sin) + cphi * (r.sin * l.cos - r.cos * l.sin);
-    const Scalar s12 =
-        sphi * (l.cos * r.cos + l.sin * r.sin) + cphi * (l.sin * r.cos - l.cos * r.sin);
-    V3 axis;
-    if (!(sphi > 0) || s21 <= 0) {
-      axis = l.axis;  // phi + t2 <= t1 (or the axes coincide): the left cone holds both
-    } else if (s12 <= 0) {
-      axis = r.axis;
-    } else {
-      // beta = (phi + t2 - t1) / 2 in (0, phi): half-angle formulas, cos beta < 0 past 90 degrees.
-      const Scalar sb = std::sqrt(std::max(Scalar(0), (1 - c21) / 2));
-      const Scalar cb = std::sqrt(std::max(Scalar(0), (1 + c21) / 2));
-      const V3 u = (r.axis - cphi * l.axis) / sphi;
-      axis = cb * l.axis + sb * u;
+  // The axis of node k (the file comment): false when no direction bounds its normals.
+  bool axis_of(std::size_t k, V3& axis) const {
+    const Normals& b = normals_[k];
+    const Scalar root3 = std::sqrt(Scalar(3));
+    Scalar best = 0;
+    int which = -1;
+    for (std::size_t j = 0; j < 7; ++j) {
+      const Scalar length = j < 3 ? Scalar(1) : root3;
+      if (b.low[j] / length > best) {
+        best = b.low[j] / length;
+        which = int(2 * j);
+      }
+      if (-b.high[j] / length > best) {
+        best = -b.high[j] / length;
+        which = int(2 * j + 1);
+      }
     }
-    const Scalar norm = axis.norm();
-    if (!(norm > 0)) return;
-    axis /= norm;
-    Scalar cos = 1;
-    for (const Node* child : {&l, &r}) {
-      const Scalar c = axis.dot(child->axis), s = axis.cross(child->axis).norm();
-      cos = std::min(cos, c * child->cos - s * child->sin);
-    }
-    set_cone(n, axis, cos);
+    if (which < 0) return false;
+    static constexpr Scalar e[7][3] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 1},
+                                       {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+    const std::size_t j = std::size_t(which / 2);
+    const Scalar sign = (which & 1) ? Scalar(-1) : Scalar(1);
+    axis = sign * V3(e[j][0], e[j][1], e[j][2]) / (j < 3 ? Scalar(1) : root3);
+    return true;
   }
 
-  static void set_cone(Node& n, const V3& axis, Scalar cos) {
-    if (!(cos > Scalar(1e-6))) return;
-    n.axis = axis;
-    n.cos = cos;
-    n.sin = std::sqrt(std::max(Scalar(0), 1 - cos * cos));
-  }
-
-  // The test of the file comment: a cone under 90 degrees and a star-shaped boundary loop.
-  bool star(const Points<Scalar>& x0, const Points<Scalar>& x1, const Node& n) const {
-    if (!(n.cos > 0) || n.centre < 0) return false;
+  // The test of the file comment: an axis for the normals and a star-shaped boundary loop.
+  bool star(const Points<Scalar>& x0, const Points<Scalar>& x1, std::size_t k) const {
+    const Node& n = nodes_[k];
+    V3 a;
+    if (n.centre < 0 || !axis_of(k, a)) return false;
     const Triangle& t = triangles_[std::size_t(n.centre)];
     const V3 c0 = (row(x0, t[0]) + row(x0, t[1]) + row(x0, t[2])) / 3;
     const V3 c1 = (row(x1, t[0]) + row(x1, t[1]) + row(x1, t[2])) / 3;
-    const V3& a = n.axis;
-    for (int k = n.loop_begin; k < n.loop_end; ++k) {
-      const int p = loops_[std::size_t(k)];
-      const int q = loops_[std::size_t(k + 1 < n.loop_end ? k + 1 : n.loop_begin)];
+    for (int i = n.loop_begin; i < n.loop_end; ++i) {
+      const int p = loops_[std::size_t(i)];
+      const int q = loops_[std::size_t(i + 1 < n.loop_end ? i + 1 : n.loop_begin)];
       const V3 p0 = row(x0, p) - c0, q0 = row(x0, q) - c0;
       const V3 p1 = row(x1, p) - c1, q1 = row(x1, q) - c1;
       const Scalar scale = Scalar(1e-9) * (p0.norm() + p1.norm()) * (q0.norm() + q1.norm());
@@ -428,7 +433,7 @@ class NormalConeTree {
   template <class Visit>
   void self(const Points<Scalar>& x0, const Points<Scalar>& x1, int k, Visit& visit) const {
     const Node& n = nodes_[std::size_t(k)];
-    if (!changed_[std::size_t(k)] || n.left < 0 || star(x0, x1, n)) return;
+    if (!changed_[std::size_t(k)] || n.left < 0 || star(x0, x1, std::size_t(k))) return;
     self(x0, x1, n.left, visit);
     self(x0, x1, n.right, visit);
     pair(n.left, n.right, visit);
@@ -466,6 +471,7 @@ class NormalConeTree {
 
   std::vector<Triangle> triangles_;
   std::vector<Node> nodes_;
+  std::vector<Normals> normals_;  // by node
   std::vector<int> order_, loops_;
   std::vector<int> leaf_of_;   // a triangle's leaf
   std::vector<char> changed_;  // nodes the last refit() changed

@@ -16,13 +16,13 @@
 /// overlapping pairs of the cloth's triangles give the cloth's pairs (each point and edge paired
 /// from one triangle that has it), and the obstacles' elements are queried against the tree's
 /// boxes. One more kind of pair is left out: a point and a triangle, or two edges, inside a patch
-/// of the cloth that cannot touch itself over the step (normal cone under 90 degrees, star-shaped
-/// boundary: see that file). Cost O(triangles + nodes visited + pairs log pairs); a cloth that
-/// bends smoothly has few pairs, as its neighbours on one layer are not paired. refresh() lists
-/// again only the pairs of the elements whose points' end positions changed, refitting the tree
-/// above their triangles alone; a pair of two unchanged elements is kept, or stays out when the
-/// tree skipped it for the same motion of its points (cost O(elements) flag tests, plus the
-/// changed part of the tree).
+/// of the cloth that cannot touch itself over the step (an axis on the positive side of all its
+/// normals, a star-shaped boundary: see that file). Cost O(triangles + nodes visited + pairs log
+/// pairs); a cloth that bends smoothly has few pairs, as its neighbours on one layer are not
+/// paired. refresh() lists again only the pairs of the elements whose points' end positions
+/// changed, refitting the tree above their triangles alone; a pair of two unchanged elements is
+/// kept, or stays out when the tree skipped it for the same motion of its points (cost O(elements)
+/// flag tests, plus the changed part of the tree).
 ///
 /// **Without self-collision** every pair has an obstacle's element and one of the cloth, and the
 /// list is kept from step to step. Each element keeps a stored box that holds its current one: the
