@@ -15,6 +15,7 @@
 #include <limits>
 #include <massspring/contact/colliders/box_shape.hpp>
 #include <massspring/contact/colliders/collider.hpp>
+#include <massspring/contact/colliders/collider_set.hpp>
 #include <massspring/contact/colliders/mesh_shape.hpp>
 #include <massspring/contact/colliders/triangle_mesh.hpp>
 #include <massspring/error.hpp>
@@ -722,5 +723,73 @@ TEST_CASE("solid colliders: the push of a path through a sphere equals the close
     REQUIRE(sphere.contact(x, x_end, 0, kc));
     CHECK(std::abs(kc.depth - (e - x_end).dot(n)) <= 1e-6);
     CHECK((kc.normal - n).norm() <= 1e-6);
+  }
+}
+
+// Oracles: the closed form of the plane's and the still sphere's clearance (the distance to the
+// contact zone, thickness included, less a margin of at most 1e-6 of the scale); and, for every
+// shape, still and moving, that no path shorter than the clearance is pushed: ColliderSet's
+// project() leaves its end bit for bit, and far() holds. ColliderSet::clearance() is the least
+// of its colliders' (+infinity for none).
+TEST_CASE("clearance: no path shorter than it is pushed; the plane's and sphere's closed forms") {
+  const double dt = 1.0 / 30, thickness = 0.01;
+  Pts v;
+  contact::Triangles f;
+  height_field(6, v, f);
+  std::vector<Collider> shapes = {Collider::plane(V3(0.1, -0.2, 0.3), V3(0.2, 1, -0.1)),
+                                  Collider::sphere(V3(0.1, 0.2, -0.1), 0.5),
+                                  Collider::capsule(V3(-0.3, 0, 0), V3(0.4, 0.2, 0.1), 0.2),
+                                  Collider::box(V3(0.1, 0, 0.2), V3(0.3, 0.2, 0.4)),
+                                  Collider::mesh(v, f)};
+  Random r(31);
+  for (const bool moving : {false, true}) {
+    for (std::size_t s = 0; s < shapes.size(); ++s) {
+      CAPTURE(moving);
+      CAPTURE(s);
+      Collider c = shapes[s];
+      c.set_thickness(thickness);
+      if (moving) c.set_velocity(V3(0.3, -0.6, 0.2)).set_angular_velocity(V3(0.5, -1, 2));
+      contact::ColliderSet<double> set;
+      CHECK(set.clearance(V3::Zero()) == kInf);
+      set.add(c);
+      set.begin_step(dt);
+      const Collider& added = set[0];
+      int tested = 0;
+      for (int k = 0; k < 400; ++k) {
+        const V3 xs = r.point(2.5);
+        const double clearance = set.clearance(xs);
+        CHECK(clearance == added.clearance(xs));
+        if (!moving && s == 0) {
+          const V3 n = V3(0.2, 1, -0.1).normalized();
+          const double distance = (xs - V3(0.1, -0.2, 0.3)).dot(n) - thickness;
+          CHECK(clearance <= distance);
+          CHECK(clearance >= distance - 1e-6);
+        }
+        if (!moving && s == 1) {
+          const double distance = (xs - V3(0.1, 0.2, -0.1)).norm() - 0.5 - thickness;
+          CHECK(clearance <= distance);
+          CHECK(clearance >= distance - 1e-6);
+        }
+        if (!(clearance > 0)) continue;
+        ++tested;
+        for (int j = 0; j < 10; ++j) {
+          const V3 xe = xs + (0.999 * clearance * std::abs(r())) * r.point().normalized();
+          CHECK(added.far(xs, xe, 0));
+          Eigen::Vector3d moved = xe;
+          set.project(xs.data(), moved.data(), dt);
+          CHECK(moved == xe);
+        }
+      }
+      CHECK(tested > 50);
+    }
+  }
+  // Two colliders: the least of the two.
+  contact::ColliderSet<double> both;
+  both.add(shapes[0]);
+  both.add(shapes[1]);
+  both.begin_step(dt);
+  for (int k = 0; k < 50; ++k) {
+    const V3 xs = r.point(2.5);
+    CHECK(both.clearance(xs) == std::min(both[0].clearance(xs), both[1].clearance(xs)));
   }
 }

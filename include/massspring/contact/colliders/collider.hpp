@@ -262,6 +262,16 @@ class Collider {
       }
     }
   }
+  /// @brief A distance [m] from x_start such that no path x_start -> x_end shorter than it comes
+  /// within the collider's quick-rejection zone (the one far() tests; contact() then finds
+  /// nothing): the plane's offset of x_start, or x_start's distance from the sphere that holds
+  /// the shape, its contact zone and its motion over the step (every point of the path lies within
+  /// |x_end - x_start| of x_start). Not positive: no such distance. begin_step() must have been
+  /// called. The zone's margin (sqrt(epsilon) of the scale) is far above this bound's rounding.
+  [[nodiscard]] Scalar clearance(const V3& x_start) const {
+    if (shape_ == ColliderShape::Plane) return world_normal_.dot(x_start) - offset_;
+    return (x_start - end_translation_).norm() - reach_ - motion_;
+  }
   /// @brief The contact of a point that moves from x_start (start of the step, collider at its
   /// current pose) to x_end (end of the step, collider at its end pose): true, with c set, when
   /// phi(x_end) < thickness + slop, or the path crosses a triangle (mesh), or the path starts

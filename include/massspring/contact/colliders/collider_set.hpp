@@ -118,6 +118,16 @@ class ColliderSet {
     return false;
   }
 
+  /// @brief The least Collider::clearance() of x_start [m] (+infinity without colliders): for
+  /// every x_end with |x_end - x_start| below it, project() leaves x_end as it is. For a caller
+  /// that projects many ends of one start (FastMassSpring's iterations); begin_step(dt) must have
+  /// been called.
+  [[nodiscard]] Scalar clearance(const V3& x_start) const {
+    Scalar least = std::numeric_limits<Scalar>::infinity();
+    for (const auto& c : colliders_) least = std::min(least, c.clearance(x_start));
+    return least;
+  }
+
  private:
   // The response's entry points (see the file comment): add() stores their addresses, and only
   // add() names them, so that only a program that adds a collider instantiates them.

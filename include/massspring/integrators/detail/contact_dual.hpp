@@ -37,13 +37,17 @@ void contact_weights(const System& system, Scalar alpha, Scalar h2, Vector<Scala
 /// and its start-of-step position x_start: z = P(x + u), P the colliders' position response
 /// (ColliderSet::project; begin_step(dt) called), then u <- x + u - z. Writes the point the term
 /// pulls x towards, target = z - u, and returns true when the point touches a collider; otherwise
-/// (P moved nothing) u = 0, target = x, and returns false.
+/// (P moved nothing) u = 0, target = x, and returns false. `clearance2` [m^2]: the square of
+/// ColliderSet::clearance(x_start) when positive, else 0; a z closer than that to x_start is
+/// not projected (P would not move it).
 template <class Scalar>
 bool contact_dual_update(const contact::ColliderSet<Scalar>& colliders, const Scalar* x_start,
-                         const Scalar* x, Scalar* u, Scalar dt, Scalar* target) {
+                         const Scalar* x, Scalar* u, Scalar dt, Scalar* target,
+                         Scalar clearance2 = 0) {
   Scalar z[3] = {x[0] + u[0], x[1] + u[1], x[2] + u[2]};
   const Scalar moved[3] = {z[0], z[1], z[2]};
-  colliders.project(x_start, z, dt);
+  const Scalar d[3] = {z[0] - x_start[0], z[1] - x_start[1], z[2] - x_start[2]};
+  if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < clearance2)) colliders.project(x_start, z, dt);
   if (z[0] == moved[0] && z[1] == moved[1] && z[2] == moved[2]) {
     for (int c = 0; c < 3; ++c) {
       u[c] = 0;

@@ -54,6 +54,7 @@ class ContactProjection {
     base_.resize(3 * Eigen::Index(nr));
     dual_.setZero(3 * Eigen::Index(nr));
     kept_.setZero(3 * Eigen::Index(nr));
+    clearance2_.setZero(nr);
     for (int r = 0; r < nr; ++r) {
       const int i = reduced.point[std::size_t(r)];
       point_[std::size_t(r)] = i;
@@ -78,6 +79,13 @@ class ContactProjection {
     origin_ = origin.data();
     dt_ = dt;
     base_ = rhs0.head(base_.size());  // same size: no allocation
+    for (int r = 0; r < int(weight_.size()); ++r) {
+      const Scalar c = projects_[std::size_t(r)]
+                           ? colliders_->clearance(Eigen::Map<const Vector3<Scalar>>(
+                                 x_start_ + 3 * point_[std::size_t(r)]))
+                           : Scalar(0);
+      clearance2_(r) = c > 0 ? c * c : Scalar(0);
+    }
   }
 
   /// @brief True when the term acts this step.
@@ -134,8 +142,9 @@ class ContactProjection {
         continue;
       }
       Scalar target[3];
-      const bool touches = detail::contact_dual_update(
-          *colliders_, x_start_ + 3 * point_[std::size_t(r)], xr, dual + 3 * r, dt_, target);
+      const bool touches =
+          detail::contact_dual_update(*colliders_, x_start_ + 3 * point_[std::size_t(r)], xr,
+                                      dual + 3 * r, dt_, target, clearance2_(r));
       for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (target[c] - o[c]);
       if (Energy && touches) {
         Scalar p[3] = {xr[0], xr[1], xr[2]};
@@ -160,9 +169,12 @@ class ContactProjection {
   // Projects the 3 values at xr in place; returns w_r / 2 |x - P(x)|^2.
   double project(int r, Scalar* xr) const {
     const Scalar x0 = xr[0], x1 = xr[1], x2 = xr[2];
-    colliders_->project(x_start_ + 3 * point_[std::size_t(r)], xr, dt_);
-    const Scalar d0 = xr[0] - x0, d1 = xr[1] - x1, d2 = xr[2] - x2;
-    return double(weight_(r) / 2 * (d0 * d0 + d1 * d1 + d2 * d2));
+    const Scalar* xs = x_start_ + 3 * point_[std::size_t(r)];
+    const Scalar d0 = x0 - xs[0], d1 = x1 - xs[1], d2 = x2 - xs[2];
+    if (d0 * d0 + d1 * d1 + d2 * d2 < clearance2_(r)) return 0;  // P moves nothing
+    colliders_->project(xs, xr, dt_);
+    const Scalar p0 = xr[0] - x0, p1 = xr[1] - x1, p2 = xr[2] - x2;
+    return double(weight_(r) / 2 * (p0 * p0 + p1 * p1 + p2 * p2));
   }
 
   Vector<Scalar> weight_;
@@ -171,6 +183,9 @@ class ContactProjection {
   Vector<Scalar> base_;
   Vector<Scalar> dual_;  // u, 3 per row [m]
   Vector<Scalar> kept_;  // keep_duals()'s copy of dual_
+  // Per row, the square of ColliderSet::clearance() of the step's start position [m^2] (0 when
+  // not positive): an iterate closer than that to the start is not projected.
+  Vector<Scalar> clearance2_;
   const contact::ColliderSet<Scalar>* colliders_ = nullptr;
   const Scalar* x_start_ = nullptr;
   const Scalar* origin_ = nullptr;  // 3 per row [m]
