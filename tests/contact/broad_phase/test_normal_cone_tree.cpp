@@ -138,33 +138,50 @@ TEST_CASE("NormalConeTree: a rigidly moving flat cloth is skipped whole and list
 }
 
 // The axis rule's reach (the file comment): normals within 53 degrees of a common direction
-// always have an axis. A sheet bent into a cylindrical arc whose normals span +-phi about its
-// middle normal, turned at random and moved rigidly over the step, is skipped whole for phi up
-// to 52 degrees (20 random turns each); at phi = 95 degrees the normals span more than a half
-// circle, so no axis has a positive dot product with all of them, and it is not skipped.
-TEST_CASE("NormalConeTree: a cylindrical arc with normals within 52 degrees of one is skipped") {
+// always have an axis. A sheet bent into a cylindrical arc (normals on an arc of +-phi about its
+// middle one) or laid on a spherical cap (normals filling a cone of half-angle phi, reached at
+// its corners), turned at random and moved rigidly over the step, is skipped whole for phi up to
+// 52 degrees (40 random turns each). At phi = 120 degrees the triangles' normals (taken at their
+// centroids, short of the border's phi) still span more than a half circle (the arc), or the
+// corner triangles' normals point away from the middle one (the cap), so no axis has a positive
+// dot product with all of them, and it is not skipped.
+TEST_CASE("NormalConeTree: a bent sheet with normals within 52 degrees of one is skipped") {
   const auto [flat, t] = sheet(13);
+  const Eigen::RowVector3d centre = flat.colwise().mean();
+  const double reach = 0.05 * std::sqrt(2.0);  // the corners' distance from the centre
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> u(-1, 1);
-  for (const double degrees : {20.0, 40.0, 52.0, 95.0}) {
-    const double phi = degrees * M_PI / 180, radius = 0.1 / (2 * phi);
-    Pts arc = flat;
-    for (Eigen::Index i = 0; i < flat.rows(); ++i) {
-      const double angle = (flat(i, 0) / 0.1 - 0.5) * 2 * phi;  // the sheet's x is in [0, 0.1]
-      arc.row(i) << radius * std::sin(angle), flat(i, 1), radius * (1 - std::cos(angle));
-    }
-    for (int trial = 0; trial < 20; ++trial) {
-      const Eigen::Matrix3d r =
-          Eigen::AngleAxisd(M_PI * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
-              .toRotationMatrix();
-      const Pts x0 = arc * r.transpose();
-      const Pts x1 = x0.rowwise() + Eigen::RowVector3d(0.01 * u(rng), 0.01 * u(rng), 0.01 * u(rng));
-      Tree tree;
-      tree.build(x0, t);
-      tree.refit(x0, x1, 0.001);
-      CAPTURE(degrees);
-      CAPTURE(trial);
-      CHECK(tree.cannot_touch_itself(x0, x1, 0) == (degrees < 90));
+  for (const bool cap : {false, true}) {
+    for (const double degrees : {20.0, 40.0, 52.0, 120.0}) {
+      const double phi = degrees * M_PI / 180;
+      Pts bent = flat;
+      for (Eigen::Index i = 0; i < flat.rows(); ++i) {
+        const Eigen::RowVector3d d = flat.row(i) - centre;
+        if (cap) {
+          const double r = d.norm(), radius = reach / phi, theta = phi * r / reach;
+          const double c = r > 0 ? d.x() / r : 1, s = r > 0 ? d.y() / r : 0;
+          bent.row(i) << radius * std::sin(theta) * c, radius * std::sin(theta) * s,
+              radius * std::cos(theta);
+        } else {
+          const double radius = 0.05 / phi, angle = phi * d.x() / 0.05;
+          bent.row(i) << radius * std::sin(angle), d.y(), radius * std::cos(angle);
+        }
+      }
+      for (int trial = 0; trial < 40; ++trial) {
+        const Eigen::Matrix3d r =
+            Eigen::AngleAxisd(M_PI * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
+                .toRotationMatrix();
+        const Pts x0 = bent * r.transpose();
+        const Pts x1 =
+            x0.rowwise() + Eigen::RowVector3d(0.01 * u(rng), 0.01 * u(rng), 0.01 * u(rng));
+        Tree tree;
+        tree.build(x0, t);
+        tree.refit(x0, x1, 0.001);
+        CAPTURE(cap);
+        CAPTURE(degrees);
+        CAPTURE(trial);
+        CHECK(tree.cannot_touch_itself(x0, x1, 0) == (degrees < 90));
+      }
     }
   }
 }
