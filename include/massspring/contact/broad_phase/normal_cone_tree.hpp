@@ -35,7 +35,7 @@
 /// with no rounding. When some e has e . Bk > 0 (or < 0) for all of a patch's Bk, a = e / |e| (or
 /// -e / |e|) is an axis for the test above, and the node takes the one whose least a . Bk is the
 /// largest. Every direction lies within 36.2 degrees of one of the fourteen axes +-e, so a patch
-/// whose normals stay within 53 degrees of a common direction always has an axis. Each e . Bk is
+/// whose Bk all lie within 53 degrees of a common direction always has an axis. Each e . Bk is
 /// lowered (raised) by 1e-6 |e|_1 |Bk|_1 before it counts, a cosine margin of 1e-6 that keeps
 /// rounding on the safe side; the star coefficients must exceed 1e-9 of their scale.
 ///
