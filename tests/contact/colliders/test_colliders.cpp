@@ -726,11 +726,12 @@ TEST_CASE("solid colliders: the push of a path through a sphere equals the close
   }
 }
 
-// Oracles: the closed form of the plane's and the still sphere's clearance (the distance to the
-// contact zone, thickness included, less a margin of at most 1e-6 of the scale); and, for every
-// shape, still and moving, that no path shorter than the clearance is pushed: ColliderSet's
-// project() leaves its end bit for bit, and far() holds. ColliderSet::clearance() is the least
-// of its colliders' (+infinity for none).
+// ContactZone::clearance() through Collider and ColliderSet (contact_zone.hpp has no test file
+// of its own). Oracles: the closed form of the plane's and the still sphere's clearance (the
+// distance to the contact zone, thickness included, less a margin of at most 1e-6 of the scale);
+// and, for every shape, still and moving, that no path shorter than the clearance is pushed:
+// ColliderSet's project() leaves its end bit for bit, and far() holds. ColliderSet::clearance() is
+// the least of its colliders' (+infinity for none).
 TEST_CASE("clearance: no path shorter than it is pushed; the plane's and sphere's closed forms") {
   const double dt = 1.0 / 30, thickness = 0.01;
   Pts v;

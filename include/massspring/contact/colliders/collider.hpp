@@ -35,6 +35,7 @@
 #include <utility>
 
 #include "massspring/contact/colliders/collider_contact.hpp"
+#include "massspring/contact/colliders/contact_zone.hpp"
 #include "massspring/contact/colliders/rotation.hpp"
 #include "massspring/contact/distance/path_search.hpp"
 #include "massspring/contact/distance/path_sphere.hpp"
@@ -223,8 +224,9 @@ class Collider {
   void begin_step(Scalar dt) {
     end_translation_ = translation_ + dt * velocity_;
     end_rotation_ = rotation_exp<Scalar>(angular_velocity_ * dt) * rotation_;
-    // How far a point of the collider moves over the step (a mesh's path test).
-    motion_ = (end_translation_ - translation_).norm() + angular_velocity_.norm() * dt * bound_;
+    // How far a point of the collider moves over the step.
+    zone_.motion =
+        (end_translation_ - translation_).norm() + angular_velocity_.norm() * dt * bound_;
     refresh();
   }
   /// @brief Makes the end-of-step pose the current one (after a successful step).
@@ -237,41 +239,15 @@ class Collider {
   /// committed, e.g. by DivergenceGuard).
   void undo_step() { rest_at(previous_rotation_, previous_translation_); }
 
-  /// @brief True when no point of the path x_start -> x_end can be in contact: a quick test with a
-  /// margin far above any rounding (contact() starts with it; slop adds to the margin).
+  /// @brief True when no point of the path x_start -> x_end can be in contact: the quick test
+  /// contact() starts with (ContactZone::far(); slop [m] adds to its margin).
   template <class A, class B>
   [[nodiscard]] bool far(const A& x_start, const B& x_end, Scalar slop) const {
-    switch (shape_) {
-      case ColliderShape::Plane:
-        return world_normal_.dot(x_end) - offset_ > slop;
-      case ColliderShape::Mesh: {
-        // The whole path, against the hull of the mesh's bounding sphere over the step.
-        const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
-        return d.distance > reach_ + motion_ + slop;
-      }
-      default: {
-        // The end, then the whole path (a point may cross the solid within one step): first
-        // the bound |x_end - c| - |x_end - x_start| on the path's distance from the centre c,
-        // then that distance.
-        const Scalar r = reach_ + slop;
-        const Scalar end2 = (x_end - end_translation_).squaredNorm();
-        if (!(end2 > r * r)) return false;
-        if (std::sqrt(end2) - (x_end - x_start).norm() > r + motion_) return true;
-        const auto d = point_segment_distance<Scalar>(end_translation_, x_start, x_end);
-        return d.distance > r + motion_;
-      }
-    }
+    return zone_.far(x_start, x_end, slop);
   }
-  /// @brief A distance [m] from x_start such that no path x_start -> x_end shorter than it comes
-  /// within the collider's quick-rejection zone (the one far() tests; contact() then finds
-  /// nothing): the plane's offset of x_start, or x_start's distance from the sphere that holds
-  /// the shape, its contact zone and its motion over the step (every point of the path lies within
-  /// |x_end - x_start| of x_start). Not positive: no such distance. begin_step() must have been
-  /// called. The zone's margin (sqrt(epsilon) of the scale) is far above this bound's rounding.
-  [[nodiscard]] Scalar clearance(const V3& x_start) const {
-    if (shape_ == ColliderShape::Plane) return world_normal_.dot(x_start) - offset_;
-    return (x_start - end_translation_).norm() - reach_ - motion_;
-  }
+  /// @brief ContactZone::clearance(): no path from x_start shorter than it [m] comes into
+  /// contact. begin_step() must have been called.
+  [[nodiscard]] Scalar clearance(const V3& x_start) const { return zone_.clearance(x_start); }
   /// @brief The contact of a point that moves from x_start (start of the step, collider at its
   /// current pose) to x_end (end of the step, collider at its end pose): true, with c set, when
   /// phi(x_end) < thickness + slop, or the path crosses a triangle (mesh), or the path starts
@@ -282,8 +258,8 @@ class Collider {
     Scalar phi = 0;
     switch (shape_) {
       case ColliderShape::Plane:  // world normal: no change of frame
-        phi = world_normal_.dot(x_end - end_translation_);
-        c.normal = world_normal_;
+        phi = zone_.normal.dot(x_end - end_translation_);
+        c.normal = zone_.normal;
         break;
       case ColliderShape::Sphere: {  // rotation-invariant
         const V3 p = x_end - end_translation_;
@@ -351,12 +327,10 @@ class Collider {
     translation_ = translation;
     end_rotation_ = rotation;
     end_translation_ = translation;
-    motion_ = 0;
+    zone_.motion = 0;
     refresh();
   }
-  // The quick rejection contact() starts with, in world coordinates at the end pose: a plane's
-  // world normal and offset, or a sphere about the reference point that holds the shape and its
-  // contact zone. `reach_` includes a margin far above any slop, so that it only filters.
+  // The contact zone at the end pose (contact_zone.hpp) and the slop, from the shape and pose.
   void refresh() {
     switch (shape_) {
       case ColliderShape::Plane:
@@ -381,9 +355,11 @@ class Collider {
     }
     const Scalar margin = std::sqrt(std::numeric_limits<Scalar>::epsilon()) *
                           (1 + bound_ + thickness_ + end_translation_.cwiseAbs().maxCoeff());
-    world_normal_ = end_rotation_ * axis_;
-    offset_ = world_normal_.dot(end_translation_) + thickness_ + margin;
-    reach_ = bound_ + thickness_ + margin;
+    zone_.shape = shape_;
+    zone_.normal = end_rotation_ * axis_;
+    zone_.centre = end_translation_;
+    zone_.offset = zone_.normal.dot(end_translation_) + thickness_ + margin;
+    zone_.reach = bound_ + thickness_ + margin;
     moving_ = !velocity_.isZero(0) || !angular_velocity_.isZero(0);
     slop_ = 16 * std::numeric_limits<Scalar>::epsilon() *
             (end_translation_.cwiseAbs().maxCoeff() + thickness_);
@@ -497,11 +473,11 @@ class Collider {
   M3 previous_rotation_ = M3::Identity();  // the pose before the last end_step()
   V3 previous_translation_ = V3::Zero();
   V3 end_translation_;
-  // The quick rejection (refresh()): plane normal and offset, bounding radius, reach.
-  V3 world_normal_ = V3::Zero();
-  Scalar offset_ = 0, bound_ = 0, reach_ = 0, motion_ = 0, slop_ = 0;
-  Scalar inner_ = 0;     // half the solid's smallest size: deeper, entry_push() decides
-  bool moving_ = false;  // a velocity or an angular velocity is not zero
+  ContactZone<Scalar> zone_;  // refresh(); its motion by begin_step() and rest_at()
+  Scalar bound_ = 0;          // the shape's bounding radius about its reference point
+  Scalar slop_ = 0;           // slop()
+  Scalar inner_ = 0;          // half the solid's smallest size: deeper, entry_push() decides
+  bool moving_ = false;       // a velocity or an angular velocity is not zero
 };
 
 }  // namespace massspring::contact
