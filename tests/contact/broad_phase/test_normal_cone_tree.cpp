@@ -1,8 +1,9 @@
 // contact/broad_phase/normal_cone_tree.hpp. Oracles: a brute-force list of the triangle pairs
 // whose swept boxes overlap (every one is listed, or lies in a patch the tree skips); the exact
 // crossing count and the separation of tests/support/intersections.hpp, written apart from the
-// library's contact code, at 101 times of each step for every patch the tree skips (none may
-// touch itself); and surfaces the contour rule must refuse (a ring, a flipped triangle).
+// library's contact code, at 101 times of each step for every patch the tree skips, a node's or
+// the union of two (none may touch itself); and surfaces the contour rule must refuse (a ring, a
+// flipped triangle).
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
@@ -70,24 +71,58 @@ std::vector<std::set<int>> skipped(const Tree& tree, const Pts& x0, const Pts& x
   return out;
 }
 
-// Every patch the tree skips: no crossing and a positive separation at 101 times of the step.
-// Returns how many patches (of more than one triangle) were checked.
-int check_skipped(const Tree& tree, const Pts& x0, const Pts& x1, const std::vector<Tri>& t) {
+// The unions of two nodes' patches whose pairs between the two self_pairs() reports skipped for
+// x0 -> x1 (after refit()); a node it reports skipped alone must pass cannot_touch_itself(). The
+// pairs it lists go to `listed` when given.
+std::vector<std::set<int>> searched_skips(Tree& tree, const Pts& x0, const Pts& x1,
+                                          std::set<std::pair<int, int>>* listed = nullptr) {
+  std::vector<std::set<int>> out;
+  tree.self_pairs(
+      x0, x1,
+      [&](int s, int u) {
+        if (listed) listed->insert({std::min(s, u), std::max(s, u)});
+      },
+      [&](std::size_t i, std::size_t j) {
+        if (i == j) {  // a node alone: skipped() has it
+          REQUIRE(tree.cannot_touch_itself(x0, x1, i));
+          return;
+        }
+        std::set<int> patch;
+        for (std::size_t k : {i, j})
+          for (int s : tree.patch(k)) patch.insert(s);
+        if (i != j) REQUIRE(patch.size() == tree.patch(i).size() + tree.patch(j).size());
+        out.push_back(patch);
+      });
+  return out;
+}
+
+// No crossing and a positive separation at 101 times of the step x0 -> x1 in the patch.
+void check_patch(const Pts& x0, const Pts& x1, const std::vector<Tri>& t,
+                 const std::set<int>& patch) {
+  const massspring::Triangles m = matrix(t, std::vector<int>(patch.begin(), patch.end()));
+  const massspring::Edges edges = massspring::test::triangle_edges(m);
+  for (int s = 0; s <= 100; ++s) {
+    const double u = s / 100.0;
+    const Pts x = (1 - u) * x0 + u * x1;
+    CAPTURE(u);
+    REQUIRE(massspring::test::count_crossings(x, m, edges) == 0);
+    REQUIRE(massspring::test::min_separation(x, m, edges) > 0);
+  }
+}
+
+// Every patch the tree skips, each node that passes cannot_touch_itself() and each patch the
+// search skips (the union of two nodes among them): checked by check_patch(). Returns how many
+// patches of more than one triangle were checked.
+int check_skipped(Tree& tree, const Pts& x0, const Pts& x1, const std::vector<Tri>& t) {
   int checked = 0;
-  for (std::size_t k = 0; k < tree.size(); ++k) {
-    const std::vector<int> p = tree.patch(k);
-    if (p.size() < 2 || !tree.cannot_touch_itself(x0, x1, k)) continue;
+  for (const std::set<int>& patch : skipped(tree, x0, x1)) {
+    if (patch.size() < 2) continue;
     ++checked;
-    const massspring::Triangles m = matrix(t, p);
-    const massspring::Edges edges = massspring::test::triangle_edges(m);
-    for (int s = 0; s <= 100; ++s) {
-      const double u = s / 100.0;
-      const Pts x = (1 - u) * x0 + u * x1;
-      CAPTURE(k);
-      CAPTURE(u);
-      REQUIRE(massspring::test::count_crossings(x, m, edges) == 0);
-      REQUIRE(massspring::test::min_separation(x, m, edges) > 0);
-    }
+    check_patch(x0, x1, t, patch);
+  }
+  for (const std::set<int>& patch : searched_skips(tree, x0, x1)) {
+    ++checked;
+    check_patch(x0, x1, t, patch);
   }
   return checked;
 }
@@ -209,7 +244,8 @@ TEST_CASE("NormalConeTree: every overlapping pair is listed once unless a skippe
       REQUIRE(got.insert({std::min(s, u), std::max(s, u)}).second);  // once
       REQUIRE(boxes_meet(a, b, t[std::size_t(s)], t[std::size_t(u)], g));
     });
-    const std::vector<std::set<int>> skip = skipped(tree, a, b);
+    std::vector<std::set<int>> skip = skipped(tree, a, b);
+    for (const std::set<int>& patch : searched_skips(tree, a, b)) skip.push_back(patch);
     skipped_patches += int(skip.size());
     for (int s = 0; s < int(t.size()); ++s)
       for (int u = s + 1; u < int(t.size()); ++u) {
@@ -329,6 +365,96 @@ TEST_CASE("NormalConeTree: a skipped patch never touches itself during the step"
     checked += check_skipped(tree, x0, b, t);
   }
   CHECK(checked > 40);
+}
+
+// Every pair of disjoint nodes whose union passes union_cannot_touch_itself() (the test the
+// search applies to the pairs it visits) is checked by check_patch(), on bends, folds past a half
+// turn, crumples, and a point pushed across its neighbours with the border kept.
+TEST_CASE("NormalConeTree: a union of two patches that passes never touches itself") {
+  std::mt19937 rng(31);
+  const auto [x0, t] = sheet(7);
+  Tree tree;
+  tree.build(x0, t);
+  std::vector<std::set<int>> patches(tree.size());
+  for (std::size_t k = 0; k < tree.size(); ++k) {
+    const std::vector<int> p = tree.patch(k);
+    patches[k] = std::set<int>(p.begin(), p.end());
+  }
+  std::uniform_real_distribution<double> jitter(-0.006, 0.006);
+  int checked = 0;
+  for (int trial = 0; trial < 16; ++trial) {
+    const Pts a = bend(x0, rng, 0.002 * (trial % 4));
+    Pts b = bend(x0, rng, 0.002 * (trial % 4));
+    if (trial % 4 == 1) {  // folded about x = 0.04 by up to 1.2 pi
+      const double angle = 0.3 * M_PI * (1 + trial / 4);
+      for (Eigen::Index i = 0; i < b.rows(); ++i) {
+        const double dx = x0(i, 0) - 0.04;
+        if (dx <= 0) continue;
+        b.row(i) << 0.04 + dx * std::cos(angle), x0(i, 1), dx * std::sin(angle);
+      }
+    } else if (trial % 4 == 2) {
+      for (Eigen::Index i = 0; i < b.rows(); ++i)
+        for (int k = 0; k < 3; ++k) b(i, k) += jitter(rng);
+    } else if (trial % 4 == 3) {
+      b = a;
+      b(3 * 7 + 3, 0) += 0.035;  // the middle point across two cells; the border stays
+    }
+    tree.refit(a, b, 0.001);
+    CAPTURE(trial);
+    for (std::size_t i = 0; i < tree.size(); ++i)
+      for (std::size_t j = i + 1; j < tree.size(); ++j) {
+        bool disjoint = true;
+        for (int s : patches[i]) disjoint = disjoint && !patches[j].count(s);
+        if (!disjoint || !tree.union_cannot_touch_itself(a, b, i, j)) continue;
+        std::set<int> patch = patches[i];
+        patch.insert(patches[j].begin(), patches[j].end());
+        ++checked;
+        CAPTURE(i);
+        CAPTURE(j);
+        check_patch(a, b, t, patch);
+      }
+  }
+  CHECK(checked > 100);
+}
+
+// A sheet folded by 135 degrees along a straight crease off the root's split: no axis holds the
+// normals of a patch across the crease, and the nodes there are searched; pairs of their parts
+// on one side of the crease lie in unions of two patches that pass. Against a search of the
+// nodes alone (every overlapping pair that no skipped node holds), fewer pairs are listed, each
+// among that search's, and every union reported skipped is checked.
+TEST_CASE("NormalConeTree: unions of patches on one side of a crease are not searched") {
+  const auto [flat, t] = sheet(17);
+  for (const double crease : {0.03, 0.07}) {
+    Pts x0 = flat;
+    const double angle = 0.75 * M_PI;
+    for (Eigen::Index i = 0; i < x0.rows(); ++i) {
+      const double dx = flat(i, 0) - crease;
+      if (dx <= 0) continue;
+      x0(i, 0) = crease + dx * std::cos(angle);
+      x0(i, 2) = dx * std::sin(angle);
+    }
+    const Pts x1 = x0.rowwise() + Eigen::RowVector3d(0.001, 0.002, 0.003);
+    Tree tree;
+    tree.build(flat, t);
+    const double g = 0.001;
+    tree.refit(x0, x1, g);
+    CAPTURE(crease);
+    REQUIRE_FALSE(tree.cannot_touch_itself(x0, x1, 0));
+    std::set<std::pair<int, int>> listed, alone;
+    const std::vector<std::set<int>> unions = searched_skips(tree, x0, x1, &listed);
+    const std::vector<std::set<int>> nodes = skipped(tree, x0, x1);
+    for (int s = 0; s < int(t.size()); ++s)
+      for (int u = s + 1; u < int(t.size()); ++u) {
+        if (!boxes_meet(x0, x1, t[std::size_t(s)], t[std::size_t(u)], g)) continue;
+        bool held = false;
+        for (const auto& p : nodes) held = held || (p.count(s) && p.count(u));
+        if (!held) alone.insert({s, u});
+      }
+    for (const auto& q : listed) CHECK(alone.count(q));
+    CHECK(listed.size() < alone.size());
+    CHECK(!unions.empty());
+    for (const std::set<int>& patch : unions) check_patch(x0, x1, t, patch);
+  }
 }
 
 // Motions whose ends look harmless: each half of the test must refuse them on its own.

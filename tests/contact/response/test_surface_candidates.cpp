@@ -148,16 +148,24 @@ int check_self(const contact::SurfaceElements<double>& e,
     contact::NormalConeTree<double> tree;
     tree.build(e.x0, cloth);
     tree.refit(e.x0, m.x1, grow);
-    for (std::size_t k = 0; k < tree.size(); ++k)
-      if (tree.cannot_touch_itself(e.x0, m.x1, k)) {
-        std::set<int> points, triangles;
+    const auto skip = [&](std::size_t i, std::size_t j) {
+      std::set<int> points, triangles;
+      for (std::size_t k : {i, j})
         for (int t : tree.patch(k)) {
           points.insert(cloth[std::size_t(t)].begin(), cloth[std::size_t(t)].end());
           triangles.insert(t);
         }
-        m.points.push_back(points);
-        m.triangles.push_back(triangles);
-      }
+      m.points.push_back(points);
+      m.triangles.push_back(triangles);
+    };
+    for (std::size_t k = 0; k < tree.size(); ++k)
+      if (tree.cannot_touch_itself(e.x0, m.x1, k)) skip(k, k);
+    // The unions of two nodes the search skips.
+    tree.self_pairs(
+        e.x0, m.x1, [](int, int) {},
+        [&](std::size_t i, std::size_t j) {
+          if (i != j) skip(i, j);
+        });
   }
   // Whether a skipped patch of a motion that ends these points where they end now has them all
   // (and triangle t, when t >= 0; its corners are among the points then).
@@ -455,5 +463,28 @@ TEST_CASE("SurfaceCandidates: next_step() over steps keeps every overlapping pai
     step(margin / 8);
     step(margin / 8);
     CHECK(broad.full_count() == 3);
+  }
+  // SurfaceElements keeps its lists while their sources stay the same (its `layout`); each
+  // change below makes other lists, and the candidates start over from them.
+  SUBCASE("the surface's triangles in another order: other elements, full() again") {
+    const auto layout = e.layout;
+    step(margin / 8);
+    CHECK(e.layout == layout);
+    c.triangles = c.triangles.colwise().reverse().eval();
+    step(margin / 8);
+    CHECK(e.layout != layout);
+    CHECK(broad.full_count() == 2);
+  }
+  SUBCASE("a second collider: other elements, full() again") {
+    colliders.add(contact::Collider<double>::sphere(Eigen::Vector3d(0.05, -0.05, 0.02), 0.01));
+    step(margin / 8);
+    CHECK(broad.full_count() == 2);
+  }
+  SUBCASE("self-collision on, then the triangles in another order: a tree for the new order") {
+    self = contact::SelfCollision<double>{};
+    step(margin / 8);
+    c.triangles = c.triangles.colwise().reverse().eval();
+    step(margin / 8);  // check_self() on the elements of the new order
+    step(margin / 8);
   }
 }

@@ -15,11 +15,10 @@
 /// over a time step, Tang et al. 2009, "Interactive continuous collision detection between
 /// deformable models using connectivity-based culling"; the contour test, Schvartzman, Perez and
 /// Otaduy 2010, "Star-contours for efficient hierarchical self-collision detection"). With the
-/// corners moving linearly, a triangle's normal n(t) = (b - a) x (c - a) is quadratic in t:
-/// n(t) = (1-t)^2 B0 + 2 t (1-t) B1 + t^2 B2 with B0 = n(0), B2 = n(1),
-/// B1 = ((b0 - a0) x (c1 - a1) + (b1 - a1) x (c0 - a0)) / 2, a combination of B0, B1, B2 with
-/// non-negative weights. If a unit axis a has a . Bk > 0 for every triangle of a patch, each
-/// triangle keeps its orientation when projected along a, at every t in [0, 1]. If moreover the
+/// corners moving linearly, a triangle's normal is a combination with non-negative weights of
+/// its three Bernstein coefficients Bk (contact/broad_phase/normal_bounds.hpp). If a unit axis a
+/// has a . Bk > 0 for every triangle of a patch, each triangle keeps its orientation when
+/// projected along a, at every t in [0, 1]. If moreover the
 /// patch is a topological disk whose boundary loop, projected, stays star-shaped about the
 /// centroid c(t) of one of its triangles (a . ((p(t) - c(t)) x (q(t) - c(t))) > 0 for each
 /// boundary edge p -> q, again a
@@ -27,17 +26,19 @@
 /// no two points of the patch ever meet: no point crosses a triangle and no edge crosses an edge
 /// of the patch during the step. Such a patch is not searched inside.
 ///
-/// **The axis.** Each node keeps, for the seven directions e = (1,0,0), (0,1,0), (0,0,1),
-/// (1,1,1), (1,1,-1), (1,-1,1), (-1,1,1), the least and greatest e . Bk over its triangles (the
-/// bounds of a discrete orientation polytope, Klosowski et al. 1998, "Efficient collision
-/// detection using bounding volume hierarchies of k-DOPs", here of the normals rather than of
-/// the points). A parent's bounds are its children's least and greatest: exact for the union,
-/// with no rounding. When some e has e . Bk > 0 (or < 0) for all of a patch's Bk, a = e / |e| (or
-/// -e / |e|) is an axis for the test above, and the node takes the one whose least a . Bk is the
-/// largest. Every direction lies within 36.2 degrees of one of the fourteen axes +-e, so a patch
-/// whose Bk all lie within 53 degrees of a common direction always has an axis. Each e . Bk is
-/// lowered (raised) by 1e-6 |e|_1 |Bk|_1 before it counts, a cosine margin of 1e-6 that keeps
-/// rounding on the safe side; the star coefficients must exceed 1e-9 of their scale.
+/// **Pairs of patches.** The search between two disjoint patches whose boxes overlap is skipped
+/// when their union passes the same test: two disks glued along one arc of their boundary loops
+/// (traversed in opposite directions, no other vertex shared) form a disk whose loop is the two
+/// loops' other arcs; its normal bounds are the two patches' least and greatest, and the centre is
+/// the larger patch's. Patches that meet across the border between two siblings are mostly of
+/// this kind (neighbours on one layer of a node that bends too much as a whole), so the search
+/// of a smoothly bent cloth stops along those borders instead of descending to every pair of
+/// triangles that touch there.
+///
+/// **The axis** comes from each node's NormalBounds (the ranges of its triangles' Bk along seven
+/// fixed directions; a patch whose Bk lie within 53 degrees of a common direction always has
+/// one). The star coefficients must exceed 1e-9 of their scale, which keeps rounding on the safe
+/// side.
 ///
 /// Cost: build (once per surface) O(m log m) where a node's loop comes from gluing its
 /// children's, up to O(m log^2 m) where it is traced from the triangles (a tree split in a
@@ -49,13 +50,13 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstddef>
-#include <limits>
 #include <utility>
 #include <vector>
 
 #include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/contact/broad_phase/normal_bounds.hpp"
+#include "massspring/contact/broad_phase/star_contour.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
@@ -87,8 +88,13 @@ class NormalConeTree {
     }
     nodes_.reserve(std::size_t(std::max(0, 2 * m - 1)));
     loops_.reserve(std::size_t(8 * m));
+    position_.assign(std::size_t(x.rows()), -1);
     if (m > 0) split(x, 0, m);
     normals_.resize(nodes_.size());
+    std::size_t longest = 0;
+    for (const Node& n : nodes_)
+      longest = std::max(longest, std::size_t(n.loop_end - n.loop_begin));
+    union_loop_.reserve(2 * longest);
   }
 
   /// @brief The number of nodes (2 m - 1 for m > 0 triangles).
@@ -125,8 +131,17 @@ class NormalConeTree {
   /// patch that cannot touch itself over x0 -> x1 (the motion given to refit()), and pairs of
   /// two triangles that the last refit() did not change.
   template <class Visit>
-  void self_pairs(const Points<Scalar>& x0, const Points<Scalar>& x1, Visit&& visit) const {
-    if (!nodes_.empty()) self(x0, x1, 0, visit);
+  void self_pairs(const Points<Scalar>& x0, const Points<Scalar>& x1, Visit&& visit) {
+    self_pairs(x0, x1, visit, [](std::size_t, std::size_t) {});
+  }
+
+  /// @brief self_pairs(), also calling skipped(i, j) for each patch not searched: the patch of
+  /// node i alone (j == i, a node that passes cannot_touch_itself()), or the union of the
+  /// disjoint patches of nodes i and j, whose pairs between the two are then not visited.
+  template <class Visit, class Skipped>
+  void self_pairs(const Points<Scalar>& x0, const Points<Scalar>& x1, Visit&& visit,
+                  Skipped&& skipped) {
+    if (!nodes_.empty()) self(x0, x1, 0, visit, skipped);
   }
 
   /// @brief The triangles of node k's patch (node 0: all of them).
@@ -145,7 +160,19 @@ class NormalConeTree {
   /// comment for the motion given to the last refit().
   [[nodiscard]] bool cannot_touch_itself(const Points<Scalar>& x0, const Points<Scalar>& x1,
                                          std::size_t k) const {
-    return star(x0, x1, k);
+    V3 a;
+    const Node& n = nodes_[k];
+    return n.centre >= 0 && normals_[k].axis(a) &&
+           star(x0, x1, a, n.centre, loops_.data() + n.loop_begin, n.loop_end - n.loop_begin);
+  }
+
+  /// @brief Whether the union of the patches of nodes i and j (disjoint: neither holds the
+  /// other) passes the test of the file comment for the motion given to the last refit(), as
+  /// self_pairs() tests the pairs of nodes it visits; false for two leaves, which it never tests.
+  [[nodiscard]] bool union_cannot_touch_itself(const Points<Scalar>& x0, const Points<Scalar>& x1,
+                                               std::size_t i, std::size_t j) {
+    bool may_glue = true;
+    return cannot_touch(x0, x1, int(i), int(j), may_glue);
   }
 
  private:
@@ -155,11 +182,9 @@ class NormalConeTree {
     int loop_begin = 0, loop_end = 0;  // boundary loop in loops_
     int centre = -1;  // the triangle whose centroid is the star's centre; -1: not a disk
     Box box;
+    Box home;  // the box of its triangles' corners in the x given to build()
   };
-  // A node's least and greatest e . Bk for each of the seven directions (the file comment).
-  struct Normals {
-    std::array<Scalar, 7> low, high;
-  };
+  using Normals = NormalBounds<Scalar>;
 
   static V3 row(const Points<Scalar>& x, int i) { return x.row(i).transpose(); }
 
@@ -190,10 +215,17 @@ class NormalConeTree {
       }
       const int left = split(x, b, m);
       const int right = split(x, m, e);
-      nodes_[std::size_t(id)].left = left;
-      nodes_[std::size_t(id)].right = right;
+      Node& n = nodes_[std::size_t(id)];
+      n.left = left;
+      n.right = right;
+      const Box& l = nodes_[std::size_t(left)].home;
+      const Box& r = nodes_[std::size_t(right)].home;
+      n.home = {l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi)};
     } else {
       leaf_of_[std::size_t(order_[std::size_t(b)])] = id;
+      const Triangle& c = triangles_[std::size_t(order_[std::size_t(b)])];
+      const V3 p = row(x, c[0]), q = row(x, c[1]), r = row(x, c[2]);
+      nodes_[std::size_t(id)].home = {p.cwiseMin(q).cwiseMin(r), p.cwiseMax(q).cwiseMax(r)};
     }
     contour(x, nodes_[std::size_t(id)]);
     return id;
@@ -211,7 +243,8 @@ class NormalConeTree {
       const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
       if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) return;
       loops_.insert(loops_.end(), c.begin(), c.end());
-    } else if (!glue(nodes_[std::size_t(n.left)], nodes_[std::size_t(n.right)]) && !trace(n)) {
+    } else if (!glue(nodes_[std::size_t(n.left)], nodes_[std::size_t(n.right)], loops_) &&
+               !trace(n)) {
       return;
     }
     n.loop_begin = begin;
@@ -293,18 +326,16 @@ class NormalConeTree {
     return true;
   }
 
-  // Appends the loop of the union of disks l and r to loops_ (see contour()); false when they do
-  // not meet along exactly one arc.
-  bool glue(const Node& l, const Node& r) {
+  // Appends the loop of the union of disks l and r to out (see contour()); false when they do
+  // not meet along exactly one arc. The vertices are rows of the x given to build(). `edges`:
+  // how many edges of l's loop r's has reversed.
+  bool glue(const Node& l, const Node& r, std::vector<int>& out, int* edges = nullptr) {
     if (l.centre < 0 || r.centre < 0) return false;
     const int p = l.loop_end - l.loop_begin, q = r.loop_end - r.loop_begin;
     const auto lv = [&](int i) { return loops_[std::size_t(l.loop_begin + (i % p))]; };
     const auto rv = [&](int j) { return loops_[std::size_t(r.loop_begin + (j % q))]; };
-    int top = 0;
-    for (int j = 0; j < q; ++j) top = std::max(top, rv(j) + 1);
-    if (int(position_.size()) < top) position_.resize(std::size_t(top), -1);
     for (int j = 0; j < q; ++j) position_[std::size_t(rv(j))] = j;
-    const auto at = [&](int v) { return v < top ? position_[std::size_t(v)] : -1; };
+    const auto at = [&](int v) { return position_[std::size_t(v)]; };
     // Edge i of l (lv(i) -> lv(i + 1)) is shared when r has lv(i + 1) -> lv(i).
     const auto shared = [&](int i) {
       const int j = at(lv(i + 1));
@@ -320,13 +351,14 @@ class NormalConeTree {
       }
       common += at(lv(i)) >= 0;
     }
+    if (edges) *edges = count;
     bool ok = starts == 1 && count < p && count < q && common == count + 1;
     if (ok) {
       const int s = lv(first), e = lv(first + count);
       const int js = at(s);
       ok = rv(at(e) + count) == s;
-      for (int i = first + count; ok && i <= first + p; ++i) loops_.push_back(lv(i));  // e .. s
-      for (int m = 1; ok && m < q - count; ++m) loops_.push_back(rv(js + m));  // after s .. e
+      for (int i = first + count; ok && i <= first + p; ++i) out.push_back(lv(i));  // e .. s
+      for (int m = 1; ok && m < q - count; ++m) out.push_back(rv(js + m));          // after s .. e
     }
     for (int j = 0; j < q; ++j) position_[std::size_t(rv(j))] = -1;
     return ok;
@@ -342,16 +374,10 @@ class NormalConeTree {
     const std::size_t l = std::size_t(n.left), r = std::size_t(n.right);
     n.box = {nodes_[l].box.lo.cwiseMin(nodes_[r].box.lo),
              nodes_[l].box.hi.cwiseMax(nodes_[r].box.hi)};
-    Normals& b = normals_[k];
-    for (std::size_t j = 0; j < 7; ++j) {
-      b.low[j] = std::min(normals_[l].low[j], normals_[r].low[j]);
-      b.high[j] = std::max(normals_[l].high[j], normals_[r].high[j]);
-    }
+    normals_[k] = NormalBounds<Scalar>::merged(normals_[l], normals_[r]);
   }
 
-  // A leaf: its triangle's swept box, and the bounds of e . Bk over its Bernstein normals, each
-  // widened by the rounding margin of the file comment. A normal that is not finite leaves the
-  // bounds unbounded, so that no axis holds.
+  // A leaf: its triangle's swept box and normal bounds.
   void leaf(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n,
             Normals& b) const {
     const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
@@ -361,82 +387,57 @@ class NormalConeTree {
              a0.cwiseMax(b0).cwiseMax(c0).cwiseMax(a1).cwiseMax(b1).cwiseMax(c1)};
     n.box.lo.array() -= g;
     n.box.hi.array() += g;
-    const V3 e0 = b0 - a0, f0 = c0 - a0, e1 = b1 - a1, f1 = c1 - a1;
-    const std::array<V3, 3> bern = {e0.cross(f0), (e0.cross(f1) + e1.cross(f0)) / 2, e1.cross(f1)};
-    constexpr Scalar inf = std::numeric_limits<Scalar>::infinity();
-    b.low.fill(inf);
-    b.high.fill(-inf);
-    for (const V3& v : bern) {
-      const Scalar x = v(0), y = v(1), z = v(2);
-      const Scalar m = Scalar(1e-6) * (std::abs(x) + std::abs(y) + std::abs(z));
-      if (!(m < inf)) {
-        b.low.fill(-inf);
-        b.high.fill(inf);
-        return;
-      }
-      const std::array<Scalar, 7> p = {x, y, z, x + y + z, x + y - z, x - y + z, y + z - x};
-      for (std::size_t j = 0; j < 7; ++j) {
-        const Scalar mj = j < 3 ? m : 3 * m;  // |e|_1 |Bk|_1 1e-6
-        b.low[j] = std::min(b.low[j], p[j] - mj);
-        b.high[j] = std::max(b.high[j], p[j] + mj);
-      }
-    }
+    b = NormalBounds<Scalar>::of_triangle(a0, b0, c0, a1, b1, c1);
   }
 
-  // The axis of node k (the file comment): false when no direction bounds its normals.
-  bool axis_of(std::size_t k, V3& axis) const {
-    const Normals& b = normals_[k];
-    const Scalar root3 = std::sqrt(Scalar(3));
-    Scalar best = 0;
-    int which = -1;
-    for (std::size_t j = 0; j < 7; ++j) {
-      const Scalar length = j < 3 ? Scalar(1) : root3;
-      if (b.low[j] / length > best) {
-        best = b.low[j] / length;
-        which = int(2 * j);
-      }
-      if (-b.high[j] / length > best) {
-        best = -b.high[j] / length;
-        which = int(2 * j + 1);
-      }
-    }
-    if (which < 0) return false;
-    static constexpr Scalar e[7][3] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 1},
-                                       {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
-    const std::size_t j = std::size_t(which / 2);
-    const Scalar sign = (which & 1) ? Scalar(-1) : Scalar(1);
-    axis = sign * V3(e[j][0], e[j][1], e[j][2]) / (j < 3 ? Scalar(1) : root3);
-    return true;
-  }
-
-  // The test of the file comment: an axis for the normals and a star-shaped boundary loop.
-  bool star(const Points<Scalar>& x0, const Points<Scalar>& x1, std::size_t k) const {
-    const Node& n = nodes_[k];
-    V3 a;
-    if (n.centre < 0 || !axis_of(k, a)) return false;
-    const Triangle& t = triangles_[std::size_t(n.centre)];
+  // The contour test of the file comment: the loop (count vertices) stays star-shaped about
+  // the centroid of triangle `centre`, seen along the unit axis a, over the step.
+  bool star(const Points<Scalar>& x0, const Points<Scalar>& x1, const V3& a, int centre,
+            const int* loop, int count) const {
+    const Triangle& t = triangles_[std::size_t(centre)];
     const V3 c0 = (row(x0, t[0]) + row(x0, t[1]) + row(x0, t[2])) / 3;
     const V3 c1 = (row(x1, t[0]) + row(x1, t[1]) + row(x1, t[2])) / 3;
-    for (int i = n.loop_begin; i < n.loop_end; ++i) {
-      const int p = loops_[std::size_t(i)];
-      const int q = loops_[std::size_t(i + 1 < n.loop_end ? i + 1 : n.loop_begin)];
-      const V3 p0 = row(x0, p) - c0, q0 = row(x0, q) - c0;
-      const V3 p1 = row(x1, p) - c1, q1 = row(x1, q) - c1;
-      const Scalar scale = Scalar(1e-9) * (p0.norm() + p1.norm()) * (q0.norm() + q1.norm());
-      if (!(a.dot(p0.cross(q0)) > scale && a.dot(p1.cross(q1)) > scale &&
-            a.dot(p0.cross(q1) + p1.cross(q0)) > 2 * scale))
-        return false;
-    }
-    return true;
+    return loop_stays_star_shaped(x0, x1, a, c0, c1, loop, count);
   }
 
-  template <class Visit>
-  void self(const Points<Scalar>& x0, const Points<Scalar>& x1, int k, Visit& visit) const {
+  template <class Visit, class Skipped>
+  void self(const Points<Scalar>& x0, const Points<Scalar>& x1, int k, Visit& visit,
+            Skipped& skipped) {
     const Node& n = nodes_[std::size_t(k)];
-    if (!changed_[std::size_t(k)] || n.left < 0 || star(x0, x1, std::size_t(k))) return;
-    self(x0, x1, n.left, visit);
-    self(x0, x1, n.right, visit);
-    pair(n.left, n.right, visit);
+    if (!changed_[std::size_t(k)] || n.left < 0) return;
+    if (cannot_touch_itself(x0, x1, std::size_t(k))) {
+      skipped(std::size_t(k), std::size_t(k));
+      return;
+    }
+    self(x0, x1, n.left, visit, skipped);
+    self(x0, x1, n.right, visit, skipped);
+    pair(x0, x1, n.left, n.right, visit, skipped);
+  }
+
+  // Whether the union of the disjoint patches of nodes i and j passes the test of the file
+  // comment (not both leaves: two triangles' pairs cost less to list than their union's test).
+  // Sets `may_glue` false when their loops share no edge: an edge between a triangle of a
+  // part of i's patch and one of a part of j's lies on both loops, so no union of such parts is
+  // a disk glued along an arc either.
+  bool cannot_touch(const Points<Scalar>& x0, const Points<Scalar>& x1, int i, int j,
+                    bool& may_glue) {
+    const Node& a = nodes_[std::size_t(i)];
+    const Node& b = nodes_[std::size_t(j)];
+    V3 axis;
+    // Patches that share a vertex have home boxes that meet at it.
+    if (!may_glue || a.centre < 0 || b.centre < 0 || (a.left < 0 && b.left < 0) ||
+        !a.home.overlaps(b.home) ||
+        !NormalBounds<Scalar>::merged(normals_[std::size_t(i)], normals_[std::size_t(j)])
+             .axis(axis))
+      return false;
+    union_loop_.clear();  // reserved in build(): the two longest loops at most
+    int edges = 0;
+    if (!glue(a, b, union_loop_, &edges)) {
+      may_glue = edges > 0;
+      return false;
+    }
+    const int centre = a.end - a.begin >= b.end - b.begin ? a.centre : b.centre;
+    return star(x0, x1, axis, centre, union_loop_.data(), int(union_loop_.size()));
   }
 
   template <class Visit>
@@ -451,21 +452,26 @@ class NormalConeTree {
     query(n.right, b, visit);
   }
 
-  template <class Visit>
-  void pair(int i, int j, Visit& visit) const {
+  template <class Visit, class Skipped>
+  void pair(const Points<Scalar>& x0, const Points<Scalar>& x1, int i, int j, Visit& visit,
+            Skipped& skipped, bool may_glue = true) {
     const Node& a = nodes_[std::size_t(i)];
     const Node& b = nodes_[std::size_t(j)];
     if (!(changed_[std::size_t(i)] || changed_[std::size_t(j)]) || !a.box.overlaps(b.box)) return;
+    if (cannot_touch(x0, x1, i, j, may_glue)) {
+      skipped(std::size_t(i), std::size_t(j));
+      return;
+    }
     if (a.left < 0 && b.left < 0) {
       visit(order_[std::size_t(a.begin)], order_[std::size_t(b.begin)]);
       return;
     }
     if (b.left < 0 || (a.left >= 0 && a.end - a.begin >= b.end - b.begin)) {
-      pair(a.left, j, visit);
-      pair(a.right, j, visit);
+      pair(x0, x1, a.left, j, visit, skipped, may_glue);
+      pair(x0, x1, a.right, j, visit, skipped, may_glue);
     } else {
-      pair(i, b.left, visit);
-      pair(i, b.right, visit);
+      pair(x0, x1, i, b.left, visit, skipped, may_glue);
+      pair(x0, x1, i, b.right, visit, skipped, may_glue);
     }
   }
 
@@ -476,8 +482,9 @@ class NormalConeTree {
   std::vector<int> leaf_of_;   // a triangle's leaf
   std::vector<char> changed_;  // nodes the last refit() changed
   std::vector<V3> centres_;
-  // build()'s scratch.
-  std::vector<int> position_;  // a vertex's place in a loop, or -1
+  // Scratch.
+  std::vector<int> position_;    // a vertex's place in a loop, or -1 (glue()'s scratch)
+  std::vector<int> union_loop_;  // the loop of two patches' union (cannot_touch()'s scratch)
   std::vector<std::pair<int, int>> directed_, boundary_;
   std::vector<int> vertices_, parent_;
 };

@@ -53,6 +53,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "massspring/contact/broad_phase/box_hash.hpp"
@@ -83,12 +84,8 @@ class SurfaceCandidates {
     grow_ = grow;
     margin_ = margin;
     ++full_count_;
-    if (e.self && !(self_seen_ && same(e.points, points_seen_) && same(e.edges, edges_seen_) &&
-                    same(e.triangles, triangles_seen_)))
-      build_tree(e);
-    points_seen_ = e.points;  // same sizes after the first steps: no allocation
-    edges_seen_ = e.edges;
-    triangles_seen_ = e.triangles;
+    if (e.self && !(self_seen_ && e.layout != 0 && e.layout == layout_seen_)) build_tree(e);
+    layout_seen_ = e.layout;
     self_seen_ = e.self;
     if (e.self) {
       tree_full(e, grow);
@@ -123,8 +120,7 @@ class SurfaceCandidates {
   /// or `grow` or `margin` from its values.
   void next_step(const Elements& e, Scalar grow, Scalar margin) {
     if (full_count_ == 0 || e.self || grow != grow_ || margin != margin_ || e.self != self_seen_ ||
-        !same(e.points, points_seen_) || !same(e.edges, edges_seen_) ||
-        !same(e.triangles, triangles_seen_)) {
+        e.layout == 0 || e.layout != layout_seen_) {
       full(e, grow, margin);
       return;
     }
@@ -212,13 +208,6 @@ class SurfaceCandidates {
     for (std::size_t a = 0; a < edges_.cloth; ++a)
       edges_.query(true, edges_.stored[a], [&](int b) { add_edge_edge(e, int(a), b); });
     std::sort(pairs_.begin(), pairs_.end(), before);
-  }
-
-  static bool same(const std::vector<Element>& a, const std::vector<Element>& b) {
-    return a.size() == b.size() &&
-           std::equal(a.begin(), a.end(), b.begin(), [](const Element& x, const Element& y) {
-             return x.p == y.p && x.owner == y.owner;
-           });
   }
 
   // The tree of the cloth's triangles (the first elements of e.triangles, owner -1) and which
@@ -403,7 +392,7 @@ class SurfaceCandidates {
   long full_count_ = 0;
   Layer points_, triangles_, edges_;
   std::vector<ElementPair> pairs_, merged_;
-  std::vector<Element> points_seen_, edges_seen_, triangles_seen_;  // the last full()'s
+  std::uint64_t layout_seen_ = 0;  // the last full()'s SurfaceElements::layout
   bool self_seen_ = false;
   std::vector<char> all_moved_;
   // Self-collision through the tree (build_tree()).

@@ -10,12 +10,18 @@
 /// at the start of the step to the one at its end. A cloth point the colliders' point response
 /// left touching a solid (plane, sphere, capsule, box) is held too (w = 0), so that no impulse
 /// pushes it back inside; the solid already gave it its contact and friction.
+///
+/// The element lists are rebuilt only when what they are made of changes (the number of points,
+/// the surface's triangles and edges, the obstacles' elements); `layout` then takes a value no
+/// SurfaceElements had before, so that equal values mean equal lists.
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -97,29 +103,64 @@ struct SurfaceElements {
     w.tail(extra).setZero();
     hold_solid_contacts(in);
     owner.assign(std::size_t(total), -1);
-    points.clear();
-    edges.clear();
-    triangles.clear();
-    // Cloth: the corners of the triangles (each once), the edges, the triangles.
-    mark.assign(std::size_t(n), 0);
-    for (Eigen::Index t = 0; t < in.triangles.rows(); ++t) {
-      triangles.push_back({{in.triangles(t, 0), in.triangles(t, 1), in.triangles(t, 2)}, -1});
-      for (int k = 0; k < 3; ++k) mark[std::size_t(in.triangles(t, k))] = 1;
+    // Cloth: the corners of the triangles (each once), the edges, the triangles; kept from the
+    // last call when n, the triangles and the edges are the same.
+    const bool same_cloth = n == cloth_n && in.triangles.rows() == cloth_triangles.rows() &&
+                            in.edges.rows() == cloth_edges.rows() &&
+                            in.triangles == cloth_triangles && in.edges == cloth_edges;
+    bool changed = !same_cloth;
+    if (same_cloth) {
+      points.resize(cloth_sizes[0]);  // the obstacles' elements follow: added again below
+      edges.resize(cloth_sizes[1]);
+      triangles.resize(cloth_sizes[2]);
+    } else {
+      points.clear();
+      edges.clear();
+      triangles.clear();
+      mark.assign(std::size_t(n), 0);
+      for (Eigen::Index t = 0; t < in.triangles.rows(); ++t) {
+        triangles.push_back({{in.triangles(t, 0), in.triangles(t, 1), in.triangles(t, 2)}, -1});
+        for (int k = 0; k < 3; ++k) mark[std::size_t(in.triangles(t, k))] = 1;
+      }
+      for (int i = 0; i < n; ++i)
+        if (mark[std::size_t(i)]) points.push_back({{i, -1, -1}, -1});
+      for (Eigen::Index e = 0; e < in.edges.rows(); ++e)
+        edges.push_back({{in.edges(e, 0), in.edges(e, 1), -1}, -1});
+      cloth_n = n;
+      cloth_triangles = in.triangles;
+      cloth_edges = in.edges;
+      cloth_sizes = {points.size(), edges.size(), triangles.size()};
     }
-    for (int i = 0; i < n; ++i)
-      if (mark[std::size_t(i)]) points.push_back({{i, -1, -1}, -1});
-    for (Eigen::Index e = 0; e < in.edges.rows(); ++e)
-      edges.push_back({{in.edges(e, 0), in.edges(e, 1), -1}, -1});
     const std::size_t cloth_elements = points.size() + edges.size() + triangles.size();
     // Obstacles.
     int next = n;
     gap.assign(std::size_t(in.colliders.size()), 0);
     for (int ci = 0; ci < in.colliders.size(); ++ci)
       next = add_obstacle(in.colliders[ci], ci, next, in.self_collision);
+    changed = !same_tail(points, cloth_sizes[0], kept_points) || changed;
+    changed = !same_tail(edges, cloth_sizes[1], kept_edges) || changed;
+    changed = !same_tail(triangles, cloth_sizes[2], kept_triangles) || changed;
+    if (changed) layout = next_layout();
     any_pairs = in.self_collision.has_value() ||
                 points.size() + edges.size() + triangles.size() > cloth_elements;
     self = in.self_collision.has_value();
     self_gap = in.self_collision ? in.self_collision->thickness / 10 : Scalar(0);
+  }
+
+  // Whether list[from..] equals kept; if not, kept takes it.
+  static bool same_tail(const std::vector<Element>& list, std::size_t from,
+                        std::vector<Element>& kept) {
+    const auto begin = list.begin() + std::ptrdiff_t(from);
+    const bool same = std::equal(
+        begin, list.end(), kept.begin(), kept.end(),
+        [](const Element& a, const Element& b) { return a.p == b.p && a.owner == b.owner; });
+    if (!same) kept.assign(begin, list.end());
+    return same;
+  }
+  // A value of `layout` no SurfaceElements had before.
+  static std::uint64_t next_layout() {
+    static std::atomic<std::uint64_t> last{0};
+    return ++last;
   }
 
   // A point the colliders' point response left touching a solid (a plane, sphere, capsule or
@@ -341,6 +382,13 @@ struct SurfaceElements {
   std::vector<Scalar> gap;  // per collider [m]
   std::vector<Element> points, edges, triangles;
   std::vector<std::pair<int, int>> mesh_edges;  // scratch of add_obstacle()
+  std::uint64_t layout = 0;  // the lists' value (see the file comment); 0: never set up
+  // What the lists were last built from: the cloth's part and the obstacles'.
+  int cloth_n = -1;
+  Triangles cloth_triangles;
+  Edges cloth_edges;
+  std::array<std::size_t, 3> cloth_sizes{};  // points, edges, triangles of the cloth
+  std::vector<Element> kept_points, kept_edges, kept_triangles;
 };
 
 }  // namespace massspring::contact
