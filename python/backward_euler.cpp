@@ -23,7 +23,10 @@ void bind_backward_euler(py::module_& m) {
       .def_readwrite("contact_weight", &Options::contact_weight,
                      "Weight alpha of contact and friction inside the solve: alpha sqrt(m (m + "
                      "h^2 k)) per point, k its springs' summed stiffness (0: at the end of the "
-                     "step; 1 suits dt = 1/30).");
+                     "step; 1 suits dt = 1/30).")
+      .def_readwrite("energy_growth", &Options::energy_growth,
+                     "A step whose energy passes E(0) + energy_growth S is refused and reported "
+                     "(StepReport.blew_up); >= 0, default 100, 0: off.");
 
   py::class_<Solver> c(m, "BackwardEuler",
                        "Implicit Euler on (M - h dF/dv - h^2 dF/dx), linearised or Newton.");

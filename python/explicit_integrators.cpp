@@ -1,5 +1,5 @@
-// massspring.ForwardEuler, SymplecticEuler and RK4 (integrators/). They have no options; their one
-// C++ setting, set_swap_buffers, is fixed here (below), not exposed.
+// massspring.ForwardEuler, SymplecticEuler and RK4 (integrators/). Their one option is the energy
+// bound's growth (set_energy_growth); set_swap_buffers is fixed here (below), not exposed.
 //
 // By default the C++ integrators end a step by swapping their work buffers with the system's
 // positions and velocities (no copy). A numpy view of sys.positions points at the system's
@@ -23,6 +23,9 @@ void bind_explicit(py::module_& m, const char* name, const char* doc) {
     integrator.set_swap_buffers(false);  // the system's arrays keep their memory
     return integrator;
   }));
+  c.def("set_energy_growth", &Integrator::set_energy_growth, py::arg("growth"),
+        "A step whose energy passes E(0) + growth S is refused and reported (StepReport.blew_up); "
+        ">= 0, default 100, 0: off. Takes effect at the next precompute().");
   bind_integrator_calls<Integrator>(m, c,
                                     [](Integrator& i, System& system) { return i.step(system); });
 }

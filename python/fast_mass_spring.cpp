@@ -73,10 +73,14 @@ void bind_fast_mass_spring(py::module_& m) {
       .def_readwrite("penalty_weight", &Options::penalty_weight, "w for PinMode.Penalty [N/m].")
       .def_readwrite("contact_weight", &Options::contact_weight,
                      "Weight alpha of contact and friction inside the iteration: alpha sqrt(m "
-                     "(m + dt^2 k)) / dt^2 per point, k its springs' summed stiffness (0: at the "
-                     "end of the step; 1 with Acceleration.Anderson or Acceleration.Chebyshev "
-                     "and InitialGuess.Inertial suits dt = 1/30, 0.5 plain with "
-                     "self-collision there).")
+                     "(m + dt^2 k)) / dt^2 per point, k its springs' summed stiffness (default "
+                     "1; 0: contact only at the end of the step).")
+      .def_readwrite("energy_growth", &Options::energy_growth,
+                     "A step whose energy passes E(0) + energy_growth S is refused and reported "
+                     "(StepReport.blew_up); >= 0, default 100, 0: off.")
+      .def_static("reference", &Options::reference,
+                  "The assignment's plain iteration: 50 iterations from the current "
+                  "positions, no acceleration, no contact term.")
       // Removed options: assigning one names what replaces it (a force term on the system).
       .def_property(
           "external_force", [](const Options&) -> py::object { throw removed("external_force"); },

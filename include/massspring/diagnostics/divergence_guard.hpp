@@ -9,7 +9,7 @@
 #include "massspring/detail/validate.hpp"
 #include "massspring/diagnostics/energy.hpp"
 #include "massspring/error.hpp"
-#include "massspring/forces/evaluate.hpp"
+#include "massspring/integrators/detail/energy_bound.hpp"
 #include "massspring/integrators/step_report.hpp"
 
 namespace massspring {
@@ -50,19 +50,7 @@ class DivergenceGuard {
       : options_(options) {
     detail::require_number("DivergenceGuard", "growth", options.growth, true);
     const int n = system.num_points();
-    energy0_ = double(total_energy(system));
-    double scale = std::abs(energy0_) + double(kinetic_energy(system));
-    for (int e = 0; e < system.num_springs(); ++e) {
-      const double l0 = double(system.rest_lengths()(e));
-      scale += 0.5 * double(system.stiffness()(e)) * l0 * l0;
-    }
-    if (n > 0) {
-      const PointsType& x = system.positions();
-      const double diagonal = double((x.colwise().maxCoeff() - x.colwise().minCoeff()).norm());
-      PointsType f;
-      total_force(system, x, system.velocities(), f);
-      scale += diagonal * double(f.rowwise().norm().sum());
-    }
+    const double scale = detail::energy_scale(system, energy0_);
     if (!std::isfinite(energy0_) || !std::isfinite(scale))
       throw Error(detail::message("DivergenceGuard: the initial energy (", energy0_,
                                   ") or its scale (", scale, ") is not finite"));

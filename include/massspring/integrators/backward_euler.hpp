@@ -14,6 +14,7 @@
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/detail/commit_step.hpp"
 #include "massspring/integrators/detail/contact_dual.hpp"
+#include "massspring/integrators/detail/energy_bound.hpp"
 #include "massspring/integrators/detail/jacobian_assembly.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/linear_solver.hpp"
@@ -62,6 +63,11 @@ struct BackwardEulerOptions {
   /// (1 + max |x|); Linearized solves its linear model with the term `iterations` times
   /// at most, to the same test.
   Scalar contact_weight = Scalar(0);
+  /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
+  /// E(0) + energy_growth S, E(0) and S taken at precompute() (integrators/detail/
+  /// energy_bound.hpp), is reported as blown up (StepReport::blew_up) and not committed. Finite
+  /// and >= 0; default 100; 0 turns the check off.
+  double energy_growth = 100;
 };
 
 /// @brief Backward (implicit) Euler on the 3n x 3n system A = M - h dF/dv - h^2 dF/dx.
@@ -115,6 +121,8 @@ class BackwardEuler {
     rhs_.setZero(n, 3);
     touches_.assign(std::size_t(n), 0);
     setup(system);
+    detail::require_number("BackwardEuler", "energy_growth", options.energy_growth, false);
+    energy_bound_.reset(system, options.energy_growth);
     ready_ = true;
   }
 
@@ -131,6 +139,7 @@ class BackwardEuler {
     detail::require_number("BackwardEuler", "tolerance", double(options.tolerance), false);
     detail::require_number("BackwardEuler", "contact_weight", double(options.contact_weight),
                            false);
+    detail::require_number("BackwardEuler", "energy_growth", options.energy_growth, false);
     StepReport report;
     if (system.num_points() == 0) {  // nothing moves; max over an empty residual is undefined
       report.converged = true;
@@ -211,7 +220,7 @@ class BackwardEuler {
     if (has_potential) report.energy = double(objective(system, x_, moved_));
     v_ = v0 + moved_ / h;
     // Friction was the contact term's, inside the solve: not applied a second time.
-    detail::commit_step(system, x_, v_, h, report, !contact_);
+    detail::commit_step(system, x_, v_, h, report, energy_bound_, !contact_);
     return report;
   }
 
@@ -427,6 +436,7 @@ class BackwardEuler {
   std::vector<char> touches_;
   Vector<Scalar> dx_;
   detail::JacobianAssembly<System> assembly_;
+  detail::EnergyBound<System> energy_bound_;  // E(0) + energy_growth S, taken at precompute()
   LinearSolver<Storage, Scalar> solver_;
 };
 

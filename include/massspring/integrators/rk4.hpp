@@ -72,6 +72,12 @@ class RK4 {
   /// Python module's numpy arrays). The values are the same either way.
   void set_swap_buffers(bool swap) { s_.swap_buffers_ = swap; }
 
+  /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
+  /// E(0) + growth S, E(0) and S taken at precompute() (integrators/detail/energy_bound.hpp), is
+  /// reported as blown up (StepReport::blew_up) and not committed. growth finite and >= 0;
+  /// default 100; 0 turns the check off. Takes effect at the next precompute().
+  void set_energy_growth(double growth) { s_.set_energy_growth(growth, "RK4"); }
+
  private:
   /// @brief a_ = M^-1 F(x, v), zero at pinned points.
   template <class X, class V>

@@ -20,7 +20,7 @@ enum class Convergence {
 };
 
 /// @brief The outcome of one step. A step that fails (`ok() == false`: a failed factorization, a
-/// non-finite value, or an energy blow-up caught by a DivergenceGuard) leaves the system's
+/// non-finite value, an energy blow-up, or contact left unresolved) leaves the system's
 /// positions and velocities exactly as they were before the step.
 struct StepReport {
   /// @brief Solver iterations done in this step (local-global: global solves).
@@ -48,8 +48,10 @@ struct StepReport {
   /// @brief True when this step had to factorize again and the matrix could not be factorized
   /// (not numerically positive definite). Nothing was changed; the next step tries again.
   bool factorization_failed = false;
-  /// @brief True when a DivergenceGuard found the total energy after this step beyond its limit
-  /// (an energy blow-up). The guard then restored the state from before the step.
+  /// @brief True when the step's end state had more energy than the integrator's bound,
+  /// E(0) + energy_growth S (integrators/detail/energy_bound.hpp: an energy blow-up), or a
+  /// DivergenceGuard found the total energy after the step beyond its limit. Nothing was
+  /// changed (the guard restores the state from before the step).
   bool blew_up = false;
   /// @brief Surface contact (contact/response/surface_contact.hpp): the repulsion and collision
   /// impulses of this step, and the points its impact zones moved rigidly.

@@ -7,6 +7,7 @@
 
 #include "massspring/contact/collision_handler.hpp"
 #include "massspring/contact/response/surface_contact_slot.hpp"
+#include "massspring/integrators/detail/energy_bound.hpp"
 #include "massspring/integrators/step_report.hpp"
 
 namespace massspring::detail {
@@ -18,19 +19,19 @@ namespace massspring::detail {
 ///    (contact/collision_handler.hpp), then surface contact (contact/response/
 ///    surface_contact.hpp: no edge crosses a triangle of the cloth or an obstacle's edge);
 /// 3. pinned points at their targets again (an impact zone may have moved one);
-/// 4. when every value is finite and the contact was resolved: the end state is written to the
-///    system and the colliders take their end-of-step pose; otherwise the system is left as it
-///    was. With `swap_buffers`, x_end and v_end are swapped in (they hold the start state
-///    afterwards); without, copied (the system's arrays keep their memory, which Python's views of
-///    them need).
-/// Sets report.finite and the contact fields. Allocates nothing once the contact's work arrays
-/// have grown.
-/// `collider_friction` false: the colliders act as frictionless (FastMassSpring's contact term
-/// applied their friction inside the iteration).
+/// 4. when every value is finite, the contact was resolved and the end state's energy is within
+///    `bound` (energy_bound.hpp; else report.blew_up): the end state is written to the system and
+///    the colliders take their end-of-step pose; otherwise the system is left as it was. With
+///    `swap_buffers`, x_end and v_end are swapped in (they hold the start state afterwards);
+///    without, copied (the system's arrays keep their memory, which Python's views of them need).
+/// Sets report.finite, report.blew_up and the contact fields. Allocates nothing once the contact's
+/// work arrays have grown. `collider_friction` false: the colliders act as frictionless
+/// (FastMassSpring's contact term applied their friction inside the iteration).
 template <class System>
 void commit_step(System& system, typename System::PointsType& x_end,
                  typename System::PointsType& v_end, typename System::Scalar dt, StepReport& report,
-                 bool collider_friction = true, bool swap_buffers = false) {
+                 const EnergyBound<System>& bound, bool collider_friction = true,
+                 bool swap_buffers = false) {
   const auto& x0 = system.positions();
   const auto& pinned = system.pinned();
   const auto pin = [&] {
@@ -55,7 +56,9 @@ void commit_step(System& system, typename System::PointsType& x_end,
   // One vectorised pass: a sum is finite only when every term is (a sum of finite values can
   // overflow only when they are near 1e308, which is divergence anyway).
   report.finite = std::isfinite(x_end.sum() + v_end.sum());
-  if (report.finite && report.contact_resolved) {
+  if (report.finite && report.contact_resolved)
+    report.blew_up = bound.exceeded(system, x_end, v_end);
+  if (report.finite && report.contact_resolved && !report.blew_up) {
     if (swap_buffers) {
       system.positions().swap(x_end);
       system.velocities().swap(v_end);

@@ -9,6 +9,7 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/evaluate.hpp"
 #include "massspring/integrators/detail/commit_step.hpp"
+#include "massspring/integrators/detail/energy_bound.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/system/mass_spring_system.hpp"
 #include "massspring/types.hpp"
@@ -31,7 +32,15 @@ class ExplicitStepper {
     f_.setZero(n_, 3);
     inverse_mass_ = system.masses().cwiseInverse();
     revision_ = system.revision();
+    bound_.reset(system, energy_growth_);
     ready_ = true;
+  }
+
+  /// @brief The energy bound's growth factor (energy_bound.hpp): finite and >= 0, 0 turns the
+  /// check off. Takes effect at the next precompute().
+  void set_energy_growth(double growth, const char* who) {
+    require_number(who, "energy_growth", growth, false);
+    energy_growth_ = growth;
   }
 
   void check(const System& system, const char* who) {
@@ -54,7 +63,7 @@ class ExplicitStepper {
   /// swap_buffers_ they are swapped into the system, else copied.
   StepReport commit(System& system) {
     StepReport report;
-    commit_step(system, x_, v_, dt_, report, true, swap_buffers_);
+    commit_step(system, x_, v_, dt_, report, bound_, true, swap_buffers_);
     return report;
   }
 
@@ -63,6 +72,8 @@ class ExplicitStepper {
   bool ready_ = false;
   bool swap_buffers_ = true;
   std::uint64_t revision_ = 0;
+  double energy_growth_ = 100;
+  EnergyBound<System> bound_;
   PointsType x_, v_, f_;
   Vector<Scalar> inverse_mass_;
 };

@@ -19,6 +19,7 @@
 #include "massspring/error.hpp"
 #include "massspring/forces/springs.hpp"
 #include "massspring/integrators/detail/commit_step.hpp"
+#include "massspring/integrators/detail/energy_bound.hpp"
 #include "massspring/integrators/local_global/anderson.hpp"
 #include "massspring/integrators/local_global/chebyshev.hpp"
 #include "massspring/integrators/local_global/contact_projection.hpp"
@@ -345,44 +346,28 @@ class FastMassSpring {
     rho_estimated_ = true;
   }
 
-  // Writes the result into the system when it is finite (positions and the velocities they imply),
-  // through the system's collision handler when it has one (contact/collision_handler.hpp: the
-  // end-of-step response the explicit integrators apply too).
+  // Ends the step from the iterate x (every point's row: nx == n): the proposed end state and
+  // the velocities it implies go through detail::commit_step (pins, the collision response when
+  // the system has one, the energy bound), which writes them into the system when the step
+  // succeeded.
   StepReport commit(System& system, const Scalar* x, StepReport& report) {
-    auto& positions = system.positions();
+    const auto& positions = system.positions();
     const Scalar inv_dt = Scalar(1) / dt_;
-    const int nx = reduced_.nx;
-    for (int r = 0; r < nx; ++r) {
+    for (int r = 0; r < reduced_.nx; ++r) {
       const int i = reduced_.point[std::size_t(r)];
       for (int c = 0; c < 3; ++c) {
         const Scalar value = x[3 * r + c];
-        if (!std::isfinite(value) || !std::isfinite((value - positions(i, c)) * inv_dt)) {
+        const Scalar velocity = (value - positions(i, c)) * inv_dt;
+        if (!std::isfinite(value) || !std::isfinite(velocity)) {
           report.finite = false;
           return report;
         }
+        x_end_(i, c) = value;
+        v_end_(i, c) = velocity;
       }
     }
-    auto& velocities = system.velocities();
-    if (system.has_collision_response()) {
-      for (int r = 0; r < nx; ++r) {
-        const int i = reduced_.point[std::size_t(r)];
-        for (int c = 0; c < 3; ++c) {
-          x_end_(i, c) = x[3 * r + c];
-          v_end_(i, c) = (x[3 * r + c] - positions(i, c)) * inv_dt;
-        }
-      }
-      // Friction was the contact term's, inside the iteration: not applied a second time.
-      detail::commit_step(system, x_end_, v_end_, dt_, report, !contact_.active());
-      return report;
-    }
-    for (int r = 0; r < nx; ++r) {
-      const int i = reduced_.point[std::size_t(r)];
-      for (int c = 0; c < 3; ++c) {
-        const Scalar value = x[3 * r + c];
-        velocities(i, c) = (value - positions(i, c)) * inv_dt;
-        positions(i, c) = value;
-      }
-    }
+    // Friction was the contact term's, inside the iteration: not applied a second time.
+    detail::commit_step(system, x_end_, v_end_, dt_, report, energy_bound_, !contact_.active());
     return report;
   }
 
@@ -401,10 +386,11 @@ class FastMassSpring {
   Cholesky llt_;
   std::array<Buffer, 5> buffers_;
   local_global::InertialTerm<Scalar> inertia_;
-  Scalar drag_ = 0;               // sum of the terms' uniform linear damping [N s/m]
-  bool other_terms_ = false;      // the system has force terms other than that
-  Points<Scalar> term_force_;     // their force at the step's start
-  Points<Scalar> x_end_, v_end_;  // the end-of-step state, for a collision handler
+  Scalar drag_ = 0;                           // sum of the terms' uniform linear damping [N s/m]
+  bool other_terms_ = false;                  // the system has force terms other than that
+  Points<Scalar> term_force_;                 // their force at the step's start
+  Points<Scalar> x_end_, v_end_;              // the proposed end-of-step state (commit())
+  detail::EnergyBound<System> energy_bound_;  // taken at precompute()
   local_global::Anderson<Scalar> anderson_;
   local_global::ContactProjection<Scalar> contact_;  // the contact term (colliders)
   bool with_contact_ = false;                        // Q was built for a system with colliders
@@ -418,6 +404,7 @@ void FastMassSpring<System, Cholesky_>::precompute(const System& system, Scalar 
   check_options();
   dt_ = dt;
   if (!build(system)) throw Error(factorization_message());
+  energy_bound_.reset(system, options.energy_growth);
 }
 
 template <class System, class Cholesky_>
