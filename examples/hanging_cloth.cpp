@@ -19,7 +19,6 @@ int main() {
   system.add_force(massspring::Gravity<double>({0, -9.8, 0}));  // [m/s^2]
 
   massspring::FastMassSpring<System> solver;
-  solver.options.iterations = 10;       // local-global iterations per step
   solver.precompute(system, 1.0 / 30);  // dt [s]; factorizes once
   for (int step = 0; step < 60; ++step) {
     const massspring::StepReport report = solver.step(system);

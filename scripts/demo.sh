@@ -26,11 +26,10 @@ rm -rf "$out"
 mkdir -p "$out"
 # The drape (examples/scenes/drape.json): a cloth dropped over a sphere onto a floor, friction 0.3
 # on both; the scene carries its gravity. At the tool's usual step, 1/30 s (the scene's own is
-# 1/200), with contact inside the iteration (--contact-weight 1 with Anderson acceleration, from
-# the inertial prediction: docs/contact.md) and self-collision 4 mm thick. 1.5 s, every frame.
+# 1/200), with self-collision 4 mm thick and the solver's defaults (docs/contact.md, "Defaults").
+# 1.5 s, every frame.
 "$build"/tools/massspring-simulate examples/scenes/drape.json \
-  --dt 0.0333333 --duration 1.5 --iterations 10 --contact-weight 1 --acceleration anderson \
-  --initial-guess inertial --self-collision 0.004 \
+  --dt 0.0333333 --duration 1.5 --self-collision 0.004 \
   --out "$out/frames" --every 1 --csv "$out/trajectory.csv" --html "$out/drape.html"
 "$python" scripts/render.py "$out/frames" --dt 0.0333333 --until 1.5 --panels 4 --size 2.6 \
   --scene examples/scenes/drape.json --png "$out/drape.png" --gif "$out/drape.gif"

@@ -2,7 +2,7 @@
 """Drapes a cloth over a ball from Python and saves a picture of it.
 
     PYTHONPATH=build/python python3 examples/python/drape.py [--scene examples/scenes/drape.json]
-        [--frames 300] [--dt 0.005] [--iterations 50] [--png out/python/drape.png]
+        [--frames 300] [--dt 0.005] [--iterations 10] [--png out/python/drape.png]
 
 The scene (a JSON+OBJ file: a 31 x 31 cloth above a sphere on a floor) is loaded with
 massspring.load_scene_file, gravity (9.8 m/s^2 down) is added as a force term, and the
@@ -54,7 +54,8 @@ def main():
     parser.add_argument("--frames", type=int, default=300)
     parser.add_argument("--dt", type=float, help="time step [s] (default: the scene's \"dt\", "
                         "else 0.005)")
-    parser.add_argument("--iterations", type=int, default=50)
+    parser.add_argument("--iterations", type=int,
+                        help="local-global iterations per step (default: the solver's, 10)")
     parser.add_argument("--png", default=os.path.join("out", "python", "drape.png"))
     args = parser.parse_args()
 
@@ -63,7 +64,8 @@ def main():
     if "gravity" not in system.forces:  # drape.json carries its own
         system.add_force(ms.Gravity([0, -9.8, 0]))  # [m/s^2], on each point's mass
     solver = ms.FastMassSpring()
-    solver.options.iterations = args.iterations
+    if args.iterations is not None:
+        solver.options.iterations = args.iterations
     dt = args.dt or loaded.dt or 0.005  # [s]
     solver.precompute(system, dt)
 

@@ -18,7 +18,6 @@ system = ms.make_system(ms.make_cloth(options))
 system.add_force(ms.Gravity([0, -9.8, 0]))  # [m/s^2]
 
 solver = ms.FastMassSpring()
-solver.options.iterations = 10  # local-global iterations per step
 solver.precompute(system, 1 / 30)  # dt [s]; factorizes once
 for step in range(60):
     report = solver.step(system)

@@ -219,6 +219,7 @@ void configure(const Config& c, const Plan& p, massspring::FastMassSpring<System
   o.threads = c.threads;
   o.ordering = massspring::parse_option<massspring::FillOrdering>(c.ordering);
   o.initial_guess = massspring::parse_option<massspring::InitialGuess>(c.initial_guess);
+  o.energy_growth = c.guard_growth;  // the solver's own bound, the guard's limit
   if (std::is_same_v<Scalar, float> && o.pins == massspring::PinMode::Penalty)
     throw Error(
         massspring::detail::message("--pins penalty with --precision float: w = ", c.penalty_weight,
@@ -232,10 +233,14 @@ void configure(const Config& c, const Plan&, massspring::BackwardEuler<System>& 
   solver.options.tolerance = typename System::Scalar(c.newton_tolerance);
   solver.options.line_search = c.line_search == "on";
   solver.options.contact_weight = typename System::Scalar(c.contact_weight);
+  solver.options.energy_growth = c.guard_growth;
 }
 
+// The explicit integrators: the energy bound only.
 template <class System, class Solver>
-void configure(const Config&, const Plan&, Solver&) {}
+void configure(const Config& c, const Plan&, Solver& solver) {
+  solver.set_energy_growth(c.guard_growth);
+}
 
 // What the run is, as the first line prints it: the integrator's name, and FastMassSpring's pins,
 // iterations and acceleration.
