@@ -21,7 +21,8 @@ from .progress import Progress
 
 # Parameters massspring-simulate has an option for (the option is --NAME with dashes).
 _CLI_OPTIONS = {
-    "integrator", "dt", "frames", "every", "guard_growth", "self_collision", "iterations",
+    "integrator", "dt", "frames", "every", "guard_growth", "self_collision", "shrink",
+    "contact_weight", "iterations",
     "tolerance", "pins", "penalty_weight", "acceleration", "chebyshev_rho", "chebyshev_gamma",
     "chebyshev_delay", "chebyshev_estimate_iterations", "anderson_window", "threads",
     "ordering", "initial_guess", "newton_iterations", "newton_tolerance", "line_search",

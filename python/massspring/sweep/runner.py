@@ -8,6 +8,7 @@ ConstantForce, LinearDrag), the integrator and its options, precompute, the ener
 (DivergenceGuard, growth `guard_growth`; 0: none), and `frames` x `every` steps."""
 
 import importlib
+import math
 import os
 import socket
 import tempfile
@@ -180,8 +181,30 @@ def setup(parameters, bundle=None):
             o.tolerance = p["newton_tolerance"]
         if "line_search" in p:
             o.line_search = p["line_search"]
+    # The energy bound of every integrator: the guard's growth, as massspring-simulate sets it.
+    growth = p.get("guard_growth", DEFAULTS["guard_growth"])
+    if integrator in (FMS, BE, "linearized-backward-euler"):
+        solver.options.energy_growth = growth
+        if "contact_weight" in p:
+            solver.options.contact_weight = p["contact_weight"]
+    else:
+        solver.set_energy_growth(growth)
     steps = p.get("frames", DEFAULTS["frames"]) * p.get("every", DEFAULTS["every"])
     return system, solver, integrator, dt, steps
+
+
+class _Shrink:
+    """massspring-simulate's --shrink: before step k (1-based) the rest lengths are
+    l0(0) exp(-shrink dt (k - 1)); nothing when the run has no "shrink"."""
+
+    def __init__(self, parameters, system, dt):
+        self.rate = parameters.get("shrink", 0.0)
+        self.rest = system.rest_lengths.copy() if self.rate > 0 else None
+        self.dt = dt
+
+    def before(self, system, step):
+        if self.rest is not None:
+            system.rest_lengths = self.rest * math.exp(-self.rate * self.dt * (step - 1))
 
 
 def _frames_to_save(choice, frames):
@@ -201,9 +224,11 @@ def _repeat(parameters, bundle, steps, growth, energy):
     system, solver, _, dt, _ = setup(parameters, bundle)
     solver.precompute(system, dt)
     guard = ms.DivergenceGuard(system, growth) if growth > 0 else None
+    shrink = _Shrink(parameters, system, dt)
     clock = time.perf_counter
     total = 0.0
-    for _ in range(steps):
+    for step in range(1, steps + 1):
+        shrink.before(system, step)
         t0 = clock()
         report = guard.step(solver, system) if guard is not None else solver.step(system)
         total += clock() - t0
@@ -248,6 +273,7 @@ def run(parameters, bundle=None):
 
         solver.precompute(system, dt)
         guard = ms.DivergenceGuard(system, growth) if growth > 0 else None
+        shrink = _Shrink(parameters, system, dt)
         result["initial_energy"] = float(ms.total_energy(system))
         saved_frames, positions, velocities = [], [], []
 
@@ -272,6 +298,7 @@ def run(parameters, bundle=None):
                     result["message"] = (f"projected {projected:.3g} s for {steps} steps, past "
                                          f"the budget {budget:g} s; stopped after {probe}")
                     break
+            shrink.before(system, step)
             t0 = time.perf_counter()
             report = guard.step(solver, system) if guard is not None else solver.step(system)
             times[step - 1] = time.perf_counter() - t0

@@ -214,6 +214,7 @@ def colliders(value):
 # acceleration) the option belongs to.
 FMS = "fast-mass-spring"
 BE = "backward-euler"
+CONTACT = "contact"  # the options of the integrators with contact inside their solve
 PARAMETERS = {
     # what runs
     "scene": (text, None, "a scene file (.json + .obj, .xml, or a saved state), relative to the "
@@ -244,6 +245,8 @@ PARAMETERS = {
     "restitution": (unit_closed, None, "every collider's restitution"),
     "colliders": (colliders, None, "changes to single colliders"),
     "self_collision": (positive, None, "self-collision of the surface, thickness [m]"),
+    "shrink": (non_negative, None, "rest lengths l0(t) = l0(0) exp(-shrink t) [1/s]"),
+    "contact_weight": (non_negative, CONTACT, "contact and friction inside the solve, alpha"),
     # FastMassSpring
     "iterations": (integer(1, 1_000_000), FMS, "most local-global iterations per step"),
     "tolerance": (non_negative, FMS, "stop at this relative energy decrease"),
@@ -321,16 +324,20 @@ def _check_run(run, integrator_of_scene):
         raise SpecError(f"{where}: give either \"scene\" or \"generate\"")
     own = integrator_of_scene(run)  # also loads (checks) the scene file
     integrator = p.get("integrator") or own or FMS
-    acceleration = p.get("acceleration", "none")
+    acceleration = p.get("acceleration", ms.FastMassSpringOptions().acceleration.text)
     for key in p:
         group = PARAMETERS[key][1]
         if group is None:
             continue
         applies = (integrator == FMS if group == FMS
                    else integrator == BE if group == BE
+                   else integrator in (FMS, BE, "linearized-backward-euler") if group == CONTACT
                    else integrator == FMS and acceleration == group)
         if not applies:
-            needs = ("integrator " if group in (FMS, BE) else "acceleration ") + group
+            needs = ("integrator " + group if group in (FMS, BE)
+                     else "integrators fast-mass-spring, backward-euler and "
+                     "linearized-backward-euler" if group == CONTACT
+                     else "acceleration " + group)
             raise SpecError(f"{where}: \"{key}\" applies to {needs} only (this run: {integrator}"
                             f"{', acceleration ' + acceleration if integrator == FMS else ''})")
     frames = run.get("frames")
