@@ -125,6 +125,7 @@ def test_contact_headers_table_names_every_header():
                for p in glob.glob(os.path.join(root, "**", "*.hpp"), recursive=True)}
     assert headers, f"no header under {root}"
     text = read(os.path.join(SOURCE_DIR, "docs", "contact.md"))
+    assert "| header | what |" in text, "docs/contact.md has no table headed | header | what |"
     start = text.index("| header | what |")
     rows = text[start:].split("\n\n", 1)[0].split("\n")[2:]
     named = [re.match(r"\|\s*`([^`]+)`\s*\|", row) for row in rows]
