@@ -9,6 +9,8 @@
 //
 //   defaults_report [--scene NAME|all] [--integrator fast-mass-spring|backward-euler|all]
 //                   [--seconds S] [--no-self-collision]
+//                   [--contact-weight A] [--iterations N] [--acceleration none|chebyshev|anderson]
+// (the last three replace a default, for comparisons)
 //
 // Scenes: drape31 (examples/scenes/drape.json, the README's drape), drape81 (the Bullet
 // comparison's cloth), clothesline, ribbon_pile, two_cloths, five_cloths, tablecloth, twist,
@@ -28,6 +30,7 @@
 #include <massspring/scene/contact_recipes.hpp>
 #include <massspring/scene/make_system.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "support/intersections.hpp"
@@ -185,8 +188,27 @@ Strain strain(const System& s) {
   return r;
 }
 
+// Options other than the defaults, for comparisons (negative: the default).
+struct Overrides {
+  double contact_weight = -1;
+  int iterations = -1;
+  std::string acceleration;
+};
+
 template <class Integrator>
-void run(const Case& c, const char* integrator_name, bool self_collision) {
+void configure(Integrator& integrator, const Overrides& o) {
+  if (o.contact_weight >= 0) integrator.options.contact_weight = o.contact_weight;
+  if (o.iterations > 0) integrator.options.iterations = o.iterations;
+  if constexpr (std::is_same_v<Integrator, massspring::FastMassSpring<System>>)
+    if (!o.acceleration.empty())
+      integrator.options.acceleration = o.acceleration == "none" ? massspring::Acceleration::None
+                                        : o.acceleration == "chebyshev"
+                                            ? massspring::Acceleration::Chebyshev
+                                            : massspring::Acceleration::Anderson;
+}
+
+template <class Integrator>
+void run(const Case& c, const char* integrator_name, bool self_collision, const Overrides& o) {
   System s = massspring::make_system<System>(c.scene);
   s.add_force(massspring::Gravity<double>({0, -9.8, 0}));
   if (self_collision) {  // replaces a scene's own
@@ -197,6 +219,7 @@ void run(const Case& c, const char* integrator_name, bool self_collision) {
   }
   const massspring::Points<double> start = s.positions();
   Integrator integrator;  // the defaults
+  configure(integrator, o);
   integrator.precompute(s, kDt);
   const massspring::Edges edges = massspring::test::triangle_edges(s.surface());
   const int steps = int(std::lround(c.seconds / kDt));
@@ -242,6 +265,7 @@ int main(int argc, char** argv) {
   std::string scene = "all", integrator = "all";
   double seconds = 0;
   bool self_collision = true;
+  Overrides overrides;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     const bool has_value = a + 1 < argc;
@@ -255,6 +279,12 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "defaults_report: --seconds must be > 0\n");
         return 1;
       }
+    } else if (arg == "--contact-weight" && has_value) {
+      overrides.contact_weight = std::atof(argv[++a]);
+    } else if (arg == "--iterations" && has_value) {
+      overrides.iterations = std::atoi(argv[++a]);
+    } else if (arg == "--acceleration" && has_value) {
+      overrides.acceleration = argv[++a];
     } else if (arg == "--no-self-collision") {
       self_collision = false;
     } else {
@@ -274,9 +304,9 @@ int main(int argc, char** argv) {
       "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases(scene, seconds)) {
     if (integrator != "backward-euler")
-      run<massspring::FastMassSpring<System>>(c, "fast-mass-spring", self_collision);
+      run<massspring::FastMassSpring<System>>(c, "fast-mass-spring", self_collision, overrides);
     if (integrator != "fast-mass-spring")
-      run<massspring::BackwardEuler<System>>(c, "backward-euler", self_collision);
+      run<massspring::BackwardEuler<System>>(c, "backward-euler", self_collision, overrides);
   }
   return 0;
 }
