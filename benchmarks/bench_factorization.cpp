@@ -52,7 +52,8 @@ struct Problem {
 };
 
 Problem make_problem(const massspring::bench::Scene& scene) {
-  massspring::FastMassSpring<SparseSystem> solver;
+  massspring::FastMassSpring<SparseSystem> solver(
+      massspring::FastMassSpringOptions<double>::reference());
   solver.options.ordering = massspring::FillOrdering::Solver;
   solver.precompute(*scene.sparse, 1.0 / 30);
   Problem p;

@@ -118,7 +118,8 @@ int main(int argc, char** argv) {
   fms.options.iterations = iterations;
   fms.options.initial_guess = massspring::InitialGuess::Inertial;
   fms.options.contact_weight = contact_weight;
-  if (anderson) fms.options.acceleration = massspring::Acceleration::Anderson;
+  fms.options.acceleration =
+      anderson ? massspring::Acceleration::Anderson : massspring::Acceleration::None;
   fms.precompute(s, dt);
 
   drape::FrameTimer timer;

@@ -265,21 +265,21 @@ std::vector<Job> jobs_for(const Scene& scene, const Reference& ref, double budge
     for (int it : {1, 3, 10, 30, 100}) {
       if (quick && it > 10) continue;
       add("LocalGlobal", "it=" + std::to_string(it), dt, [it] {
-        FastMassSpringOptions<double> o;
+        auto o = FastMassSpringOptions<double>::reference();
         o.iterations = it;
         return FastMassSpring<System>(o);
       });
     }
     for (double tol : {1e-3, 1e-6}) {
       add("LocalGlobal", "tol=" + fmt("%g", tol), dt, [tol] {
-        FastMassSpringOptions<double> o;
+        auto o = FastMassSpringOptions<double>::reference();
         o.iterations = 1000;
         o.tolerance = tol;
         return FastMassSpring<System>(o);
       });
     }
     add("LocalGlobal", "chebyshev it=10", dt, [] {
-      FastMassSpringOptions<double> o;
+      auto o = FastMassSpringOptions<double>::reference();
       o.iterations = 10;
       o.acceleration = Acceleration::Chebyshev;
       return FastMassSpring<System>(o);
@@ -340,13 +340,13 @@ std::vector<LiuRow> liu_table(int n, bool quick, std::string& description) {
   std::vector<LiuRow> rows;
   for (int it : {1, 10, 100, 1000}) {
     if (quick && it > 10) continue;
-    FastMassSpringOptions<double> o;
+    auto o = FastMassSpringOptions<double>::reference();
     o.iterations = it;
     rows.push_back(liu_row(start, FastMassSpring<System>(o), h, "local-global", e_start, e_star,
                            it <= 100 ? 5 : 1));
   }
   {
-    FastMassSpringOptions<double> o;
+    auto o = FastMassSpringOptions<double>::reference();
     o.iterations = quick ? 10 : 100;
     o.acceleration = Acceleration::Chebyshev;
     rows.push_back(liu_row(start, FastMassSpring<System>(o), h, "local-global, Chebyshev", e_start,

@@ -91,10 +91,15 @@ int main(int argc, char** argv) {
   for (const auto& [name, scene] : scenes) {
     report<FastMassSpring>(
         name.c_str(), scene, "FastMassSpring 10",
-        [](FastMassSpring& f) { f.options.iterations = 10; }, steps);
+        [](FastMassSpring& f) {
+          f.options = massspring::FastMassSpringOptions<double>::reference();
+          f.options.iterations = 10;
+        },
+        steps);
     report<FastMassSpring>(
         name.c_str(), scene, "Chebyshev 10",
         [](FastMassSpring& f) {
+          f.options = massspring::FastMassSpringOptions<double>::reference();
           f.options.iterations = 10;
           f.options.acceleration = massspring::Acceleration::Chebyshev;
         },

@@ -123,7 +123,8 @@ int main(int argc, char** argv) {
     solver.options.contact_weight = contact_weight;
     solver.options.acceleration = ms::parse_option<ms::Acceleration>(acceleration);
     // The contact term's weight slows motion the start does not predict (options.hpp).
-    if (contact_weight > 0) solver.options.initial_guess = ms::InitialGuess::Inertial;
+    solver.options.initial_guess =
+        contact_weight > 0 ? ms::InitialGuess::Inertial : ms::InitialGuess::Current;
     ms::BackwardEuler<System> be;
     be.options.mode = kind == ms::IntegratorKind::LinearizedBackwardEuler
                           ? ms::BackwardEulerMode::Linearized

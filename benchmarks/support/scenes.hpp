@@ -163,7 +163,7 @@ inline std::vector<Scene> standard_scenes(Build build = {}) {
 /// systems carry its force).
 template <class Scalar>
 FastMassSpringOptions<Scalar> options_for(const Scene&) {
-  FastMassSpringOptions<Scalar> o;
+  FastMassSpringOptions<Scalar> o = FastMassSpringOptions<Scalar>::reference();
   o.iterations = kIterations;
   o.pins = PinMode::Penalty;
   o.penalty_weight = Scalar(kPenaltyWeight);
