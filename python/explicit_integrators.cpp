@@ -25,7 +25,7 @@ void bind_explicit(py::module_& m, const char* name, const char* doc) {
   }));
   c.def("set_energy_growth", &Integrator::set_energy_growth, py::arg("growth"),
         "A step whose energy passes E(0) + growth S is refused and reported (StepReport.blew_up); "
-        ">= 0, default 100, 0: off. Takes effect at the next precompute().");
+        ">= 0, default 0: off. Takes effect at the next precompute().");
   bind_integrator_calls<Integrator>(m, c,
                                     [](Integrator& i, System& system) { return i.step(system); });
 }

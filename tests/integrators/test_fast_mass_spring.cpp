@@ -19,6 +19,14 @@
 
 namespace {
 
+// The assignment's solver (FastMassSpringOptions::reference(): 50 plain iterations from the
+// current positions, no contact term), whose properties these tests check; a test that wants an
+// acceleration or another start sets it.
+template <class S>
+massspring::FastMassSpringOptions<typename S::Scalar> plain_options() {
+  return massspring::FastMassSpringOptions<typename S::Scalar>::reference();
+}
+
 using massspring::test::add_gravity;
 using massspring::test::add_uniform_force;
 
@@ -176,7 +184,7 @@ TEST_CASE_TEMPLATE("Q = A^T K A + M / dt^2 (+ w C^T C) is symmetric positive def
 
   for (const PinMode mode : {PinMode::Penalty, PinMode::Exact}) {
     CAPTURE(int(mode));
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     solver.options.pins = mode;
     solver.options.penalty_weight = 1e4;  // moderate, so that the eigenvalue test is meaningful
     solver.precompute(s, dt);
@@ -208,7 +216,7 @@ TEST_CASE_TEMPLATE("the energy never increases over local-global iterations", Sy
     if (std::is_same_v<Scalar, float> && mode == PinMode::Penalty) continue;  // see docs
     CAPTURE(int(mode));
     System s = small_cloth<System>();
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     solver.options.pins = mode;
     add_gravity(s, {0, Scalar(-9.8), 0});
     add_uniform_force(s, {Scalar(0.01), 0, 0});
@@ -247,7 +255,7 @@ TEST_CASE_TEMPLATE("converged local-global solves the implicit Euler equations",
   for (const PinMode mode : {PinMode::Exact, PinMode::Penalty}) {
     CAPTURE(int(mode));
     System s = small_cloth<System>();
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     solver.options.pins = mode;
     add_gravity(s, {0, -9.8, 0});
     solver.options.iterations = 20000;  // linear convergence, slow when k dt^2 / m is large
@@ -321,7 +329,7 @@ TEST_CASE_TEMPLATE("a single spring with one pinned end settles at 1 + 9.8 / 500
   e << 0, 1;
   System s(v, e, Scalar(1), Scalar(500));
   s.pin(0);
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   add_uniform_force(s, {0, Scalar(-9.8), 0});
   solver.precompute(s, Scalar(1.0 / 30));
   // It swings down as a pendulum, which implicit Euler damps slowly (about 0.5 % a step).
@@ -385,7 +393,7 @@ TEST_CASE_TEMPLATE("pinned points: penalty moves them < 1e-6, exact not at all",
     CAPTURE(int(mode));
     System s = small_cloth<System>();
     const Points<double> targets = s.pin_targets();
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     solver.options.pins = mode;
     add_uniform_force(s, {0, -9.8, 0});  // the JSON+OBJ scenes' force: 9.8 N per point
     solver.precompute(s, 1.0 / 30);
@@ -410,7 +418,7 @@ TEST_CASE_TEMPLATE("step() allocates nothing", System, MS_SYSTEM_TYPES) {
       CAPTURE(int(mode));
       CAPTURE(tolerance);
       System s = small_cloth<System>();
-      FastMassSpring<System> solver;
+      FastMassSpring<System> solver(plain_options<System>());
       solver.options.pins = mode;
       solver.options.allow_float_penalty = true;  // allocation is the point here, not accuracy
       solver.options.tolerance = typename System::Scalar(tolerance);
@@ -431,7 +439,7 @@ TEST_CASE_TEMPLATE("step() allocates nothing", System, MS_SYSTEM_TYPES) {
 TEST_CASE("the model's changes: re-factorize only for masses, stiffness, pins and options") {
   using System = MassSpringSystem<double>;
   System s = chain<System>();
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   add_uniform_force(s, {0, -9.8, 0});
   solver.precompute(s, 1.0 / 30);
   CHECK_FALSE(solver.step(s).refactorized);
@@ -499,7 +507,7 @@ TEST_CASE("gravity as an acceleration is the per-point force m g") {
 TEST_CASE("the tolerance stop") {
   using System = MassSpringSystem<double>;
   System s = small_cloth<System>();
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   add_gravity(s, {0, -9.8, 0});
   solver.options.iterations = 1000;
   solver.options.tolerance = 1e-4;
@@ -537,7 +545,7 @@ TEST_CASE("both starting guesses reach the same minimiser") {
 TEST_CASE("a step whose result is not finite reports it and keeps the last good state") {
   using System = MassSpringSystem<double>;
   System s = chain<System>();
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   add_uniform_force(s, {0, -9.8, 0});
   solver.precompute(s, 1.0 / 30);
   REQUIRE(solver.step(s).ok());
@@ -605,7 +613,7 @@ TEST_CASE_TEMPLATE(
       if (!s.is_pinned(i)) v.row(i) << Scalar(u(rng)), Scalar(u(rng)), Scalar(u(rng));
     s.set_velocities(v);
 
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     solver.options.iterations = 1;
     solver.options.initial_guess = InitialGuess::Current;
     add_gravity(s, massspring::Vector3<Scalar>(0, Scalar(-9.8), 0));
@@ -704,14 +712,14 @@ TEST_CASE(
   o.stiffness = 1000;
   System start = massspring::make_system<System>(massspring::make_cloth(o));
   {
-    FastMassSpring<System> warm;
+    FastMassSpring<System> warm(plain_options<System>());
     add_gravity(start, {0, -9.8, 0});
     warm.precompute(start, 1.0 / 30);
     for (int frame = 0; frame < 3; ++frame) warm.step(start);
   }
   const auto run = [&](massspring::FillOrdering ordering, Eigen::Index* nonzeros) {
     System s = start;
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     solver.options.iterations = 10;
     solver.options.ordering = ordering;
     solver.precompute(s, 1.0 / 30);
@@ -726,7 +734,7 @@ TEST_CASE(
   // Independent: Eigen's own SimplicialLLT (AMD) of the same Q.
   {
     System s = start;
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     solver.precompute(s, 1.0 / 30);
     const Eigen::SimplicialLLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>> eigen(
         solver.system_matrix());
@@ -740,7 +748,7 @@ TEST_CASE(
 
   // A change of the option re-factorizes at the next step.
   System s = start;
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   solver.options.ordering = massspring::FillOrdering::Solver;
   solver.precompute(s, 1.0 / 30);
   CHECK(solver.factor_nonzeros() == own);
@@ -752,7 +760,7 @@ TEST_CASE(
   // Dense takes no order: Auto is its own, NestedDissection is refused.
   using DenseSystem = MassSpringSystem<double, Dense>;
   DenseSystem d = chain<DenseSystem>();
-  FastMassSpring<DenseSystem> dense;
+  FastMassSpring<DenseSystem> dense(plain_options<DenseSystem>());
   dense.precompute(d, 0.1);
   dense.options.ordering = massspring::FillOrdering::NestedDissection;
   CHECK_THROWS_WITH_AS(dense.step(d), doctest::Contains("takes no given elimination order"), Error);
@@ -761,7 +769,7 @@ TEST_CASE(
 TEST_CASE("invalid options and time steps are refused") {
   using System = MassSpringSystem<double>;
   System s = chain<System>();
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   CHECK_THROWS_WITH_AS(solver.step(s), "FastMassSpring: step() before precompute()", Error);
   CHECK_THROWS_WITH_AS(solver.precompute(s, 0.0),
                        "FastMassSpring: dt must be finite and > 0, got 0", Error);
@@ -789,7 +797,7 @@ TEST_CASE_TEMPLATE("accelerated local-global converges to the converged plain so
   for (const PinMode mode : {PinMode::Exact, PinMode::Penalty}) {
     CAPTURE(int(mode));
     System start = small_cloth<System>();
-    FastMassSpring<System> warm;
+    FastMassSpring<System> warm(plain_options<System>());
     warm.options.pins = mode;
     add_gravity(start, {0, -9.8, 0});
     warm.precompute(start, 1.0 / 30);
@@ -816,7 +824,7 @@ TEST_CASE_TEMPLATE("accelerated local-global converges to the converged plain so
     for (const Acceleration acceleration : {Acceleration::Chebyshev, Acceleration::Anderson}) {
       CAPTURE(int(acceleration));
       System s = start;
-      FastMassSpring<System> solver;
+      FastMassSpring<System> solver(plain_options<System>());
       solver.options.pins = mode;
       solver.options.acceleration = acceleration;
       solver.options.iterations = 3000;
@@ -939,7 +947,7 @@ TEST_CASE_TEMPLATE(
   // 20 x 16 points (954 free coordinates: several of the solver's blocks of rows, the last one
   // partial), windows that wrap the history several times, one that never fills.
   System start = small_cloth<System>(20, 16, 7);
-  FastMassSpring<System> warm;
+  FastMassSpring<System> warm(plain_options<System>());
   add_gravity(start, {0, -9.8, 0});
   warm.precompute(start, 1.0 / 30);
   warm.step(start);  // non-zero velocities
@@ -951,7 +959,7 @@ TEST_CASE_TEMPLATE(
     for (const int iterations : {1, 2, 12}) {
       CAPTURE(iterations);
       System s = start;
-      FastMassSpring<System> solver;
+      FastMassSpring<System> solver(plain_options<System>());
       solver.options.acceleration = massspring::Acceleration::Anderson;
       solver.options.anderson_window = window;
       solver.options.iterations = iterations;
@@ -976,7 +984,7 @@ TEST_CASE("accelerated local-global needs fewer iterations than plain for the sa
   using System = MassSpringSystem<double>;
   using massspring::Acceleration;
   System start = small_cloth<System>(12, 10);
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   add_gravity(start, {0, -9.8, 0});
   solver.precompute(start, 1.0 / 30);
   solver.step(start);
@@ -988,7 +996,7 @@ TEST_CASE("accelerated local-global needs fewer iterations than plain for the sa
   for (const Acceleration acceleration : {Acceleration::Chebyshev, Acceleration::Anderson}) {
     CAPTURE(int(acceleration));
     System s = start;
-    FastMassSpring<System> fast;
+    FastMassSpring<System> fast(plain_options<System>());
     fast.options.acceleration = acceleration;
     fast.options.iterations = 30;
     fast.precompute(s, 1.0 / 30);
@@ -1004,7 +1012,7 @@ TEST_CASE_TEMPLATE("accelerated steps never return an energy above their start, 
   for (const Acceleration acceleration : {Acceleration::Chebyshev, Acceleration::Anderson}) {
     CAPTURE(int(acceleration));
     System s = small_cloth<System>();
-    FastMassSpring<System> solver;
+    FastMassSpring<System> solver(plain_options<System>());
     add_gravity(s, {0, Scalar(-9.8), 0});
     solver.options.acceleration = acceleration;
     // A rho far too large and no delay: the iteration would diverge without its energy check.
@@ -1041,7 +1049,7 @@ TEST_CASE_TEMPLATE("accelerated step() allocates nothing", System, MS_SYSTEM_TYP
       CAPTURE(int(acceleration));
       CAPTURE(tolerance);
       System s = small_cloth<System>();
-      FastMassSpring<System> solver;
+      FastMassSpring<System> solver(plain_options<System>());
       solver.options.acceleration = acceleration;
       solver.options.tolerance = typename System::Scalar(tolerance);
       add_gravity(s, {0, -9.8f, 0});
@@ -1062,7 +1070,7 @@ TEST_CASE_TEMPLATE("accelerated step() allocates nothing", System, MS_SYSTEM_TYP
 TEST_CASE("float with penalty pins is refused unless allowed, naming the problem") {
   using System = MassSpringSystem<float>;
   System s = chain<System>();
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   solver.options.pins = PinMode::Penalty;
   CHECK_THROWS_WITH_AS(solver.precompute(s, 1.0f / 30),
                        doctest::Contains("PinMode::Penalty in float"), Error);
@@ -1082,7 +1090,7 @@ TEST_CASE("float with penalty pins is refused unless allowed, naming the problem
 TEST_CASE("invalid acceleration options are refused") {
   using System = MassSpringSystem<double>;
   System s = chain<System>();
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   solver.precompute(s, 0.1);
   solver.options.chebyshev_rho = 1.0;
   CHECK_THROWS_WITH_AS(solver.step(s), doctest::Contains("chebyshev_rho"), Error);
@@ -1143,7 +1151,7 @@ TEST_CASE("A copy of a precomputed solver steps on buffers of its own") {
   System a = small_cloth<System>(6, 5);
   add_gravity(a, {0, -9.8, 0});
   System b = a;
-  FastMassSpring<System> reference;
+  FastMassSpring<System> reference(plain_options<System>());
   auto original = std::make_unique<FastMassSpring<System>>();
   for (auto* solver : {&reference, original.get()}) solver->options.iterations = 10;
   reference.precompute(a, 1.0 / 30);
@@ -1168,13 +1176,13 @@ TEST_CASE("A copy of a precomputed solver steps on buffers of its own") {
 TEST_CASE("options.threads: refused below 1, and on Dense storage above 1") {
   using System = MassSpringSystem<double>;
   System s = small_cloth<System>();
-  FastMassSpring<System> solver;
+  FastMassSpring<System> solver(plain_options<System>());
   solver.options.threads = 0;
   CHECK_THROWS_WITH_AS(solver.precompute(s, 0.1),
                        "FastMassSpring: options.threads must be >= 1, got 0", Error);
   using DenseSystem = MassSpringSystem<double, Dense>;
   DenseSystem d = small_cloth<DenseSystem>();
-  FastMassSpring<DenseSystem> dense;
+  FastMassSpring<DenseSystem> dense(plain_options<DenseSystem>());
   dense.options.threads = 2;
   CHECK_THROWS_WITH_AS(dense.precompute(d, 0.1), doctest::Contains("one thread only"), Error);
 #ifndef _OPENMP

@@ -25,7 +25,7 @@ constexpr int kFrames = 10;
 // The JSON+OBJ scenes' settings; their force, (0, -9.8, 0) N on every point, is a ConstantForce
 // term on the system (the reference solver takes it as its own option).
 massspring::FastMassSpringOptions<double> assignment_options() {
-  massspring::FastMassSpringOptions<double> o;
+  auto o = massspring::FastMassSpringOptions<double>::reference();
   o.pins = massspring::PinMode::Penalty;
   o.penalty_weight = 1e10;
   o.initial_guess = massspring::InitialGuess::Current;

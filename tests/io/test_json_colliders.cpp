@@ -126,6 +126,10 @@ void check_resume(const massspring::SceneDescription<double>& scene, const TempD
   Solver resumed_solver;
   configured(resumed_solver);
   resumed_solver.precompute(resumed, dt);
+  // The contact term's dual variables go on from step to step: a resumed run takes them over
+  // (massspring-simulate saves them in the state's "run").
+  if constexpr (std::is_same_v<Solver, massspring::FastMassSpring<System>>)
+    resumed_solver.set_contact_duals(solver.contact_duals());
   for (int n = 0; n < 30; ++n) {
     REQUIRE(solver.step(whole).ok());
     REQUIRE(resumed_solver.step(resumed).ok());

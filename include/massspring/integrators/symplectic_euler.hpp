@@ -44,7 +44,9 @@ class SymplecticEuler {
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
   /// E(0) + growth S, E(0) and S taken at precompute() (integrators/detail/energy_bound.hpp), is
   /// reported as blown up (StepReport::blew_up) and not committed. growth finite and >= 0;
-  /// default 100; 0 turns the check off. Takes effect at the next precompute().
+  /// default 0: off, as an explicit scheme past its stable step is expected to gain energy (wrap
+  /// the steps in a DivergenceGuard, as massspring-simulate does, or set 100, the implicit
+  /// integrators' default). Takes effect at the next precompute().
   void set_energy_growth(double growth) { s_.set_energy_growth(growth, "SymplecticEuler"); }
 
  private:

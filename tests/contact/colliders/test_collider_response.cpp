@@ -147,7 +147,8 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
     case Kind::FastMassSpringAnderson:
     case Kind::FastMassSpringInSolve:
     case Kind::FastMassSpringChebyshevInSolve: {
-      massspring::FastMassSpringOptions<double> o;
+      // The end-of-step response alone unless InSolve: contact weight 0, as reference() has it.
+      auto o = massspring::FastMassSpringOptions<double>::reference();
       o.iterations = fms_iterations;
       // A fixed rho: the estimate (100 trial iterations) returns 0 ("none": no acceleration)
       // when the plain iteration converges to rounding within them, as it does in these soft

@@ -94,11 +94,12 @@ TEST_CASE("energy bound: forward Euler blows up at the step the closed form give
   }
 }
 
-TEST_CASE("energy bound: growth 0 turns it off; symplectic Euler and RK4 stay within it") {
+TEST_CASE(
+    "energy bound: growth 0 (the explicit integrators' default) turns it off; symplectic Euler and "
+    "RK4 stay within it") {
   const double m = 2, kappa = 50, h = std::sqrt(0.1 * m / kappa);
   System s = anchored_point(m, kappa);
-  massspring::ForwardEuler<System> fe;
-  fe.set_energy_growth(0);
+  massspring::ForwardEuler<System> fe;  // the default: no bound
   fe.precompute(s, h);
   for (int n = 0; n < 100; ++n) REQUIRE(fe.step(s).ok());
   CHECK(s.positions().norm() > 10);  // (1.1)^50 times the start amplitude: no check stopped it
@@ -106,6 +107,8 @@ TEST_CASE("energy bound: growth 0 turns it off; symplectic Euler and RK4 stay wi
   System a = anchored_point(m, kappa), b = anchored_point(m, kappa);
   massspring::SymplecticEuler<System> se;  // h omega = 0.32 < 2: bounded energy
   massspring::RK4<System> rk;
+  se.set_energy_growth(100);
+  rk.set_energy_growth(100);
   se.precompute(a, h);
   rk.precompute(b, h);
   for (int n = 0; n < 2000; ++n) {
@@ -115,15 +118,14 @@ TEST_CASE("energy bound: growth 0 turns it off; symplectic Euler and RK4 stay wi
 }
 
 TEST_CASE("energy bound: an energy pump trips every integrator, which keeps the last state") {
-  massspring::ClothOptions o;
-  o.columns = o.rows = 6;
-  const double h = 1.0 / 30;
+  const double h = 1.0 / 30, m = 0.1;
   const auto make = [&] {
-    System s = massspring::make_system<System>(massspring::make_cloth(o));
-    s.pin(0);
-    s.add_force(massspring::Gravity<double>({0, -9.8, 0}));
+    System s = anchored_point(m, 1.0);
+    Pts v = Pts::Zero(1, 3);
+    v(0, 1) = 1;
+    s.set_velocities(v);
     // h c / m = 1/2: an implicit step doubles the velocity, an explicit one multiplies it by 1.5.
-    s.add_force(Pump{0.5 * s.masses().maxCoeff() / h});
+    s.add_force(Pump{0.5 * m / h});
     return s;
   };
   const auto run = [&](auto& integrator, const char* who) {
@@ -136,24 +138,26 @@ TEST_CASE("energy bound: an energy pump trips every integrator, which keeps the 
       const massspring::StepReport r = integrator.step(s);
       if (!r.ok()) {
         CHECK(r.blew_up);
+        CHECK(r.finite);
         CHECK(s.positions() == x);
-        CHECK(s.positions().allFinite());
         break;
       }
     }
-    CHECK(n < 2000);
+    CHECK(n < 100);
   };
   massspring::FastMassSpring<System> fms;
   run(fms, "FastMassSpring");
   massspring::BackwardEuler<System> be;
   run(be, "BackwardEuler");
   massspring::SymplecticEuler<System> se;
+  se.set_energy_growth(100);  // off by default for the explicit integrators
   run(se, "SymplecticEuler");
 }
 
 TEST_CASE("energy bound: a 20 s free fall with the defaults never trips it") {
   massspring::ClothOptions o;
   o.columns = o.rows = 8;
+  o.pins = massspring::ClothPins::None;
   const auto make = [&] {
     System s = massspring::make_system<System>(massspring::make_cloth(o));
     s.add_force(massspring::Gravity<double>({0, -9.8, 0}));

@@ -72,7 +72,7 @@ class ExplicitStepper {
   bool ready_ = false;
   bool swap_buffers_ = true;
   std::uint64_t revision_ = 0;
-  double energy_growth_ = 100;
+  double energy_growth_ = 0;  // off: see set_energy_growth()
   EnergyBound<System> bound_;
   PointsType x_, v_, f_;
   Vector<Scalar> inverse_mass_;
