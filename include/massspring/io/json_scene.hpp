@@ -211,6 +211,9 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
   scene.vertices = std::move(mesh.vertices);
   scene.faces = std::move(mesh.faces);
   scene.edges = std::move(mesh.edges);
+  scene.source.file = obj_path.string();
+  scene.source.vertex_lines = std::move(mesh.vertex_lines);
+  scene.source.face_lines = std::move(mesh.face_lines);
   return scene;
 }
 
