@@ -157,7 +157,8 @@ int main(int argc, char** argv) {
                                   "Frames to write after the first: takes FRAMES x --every steps")
                        ->default_str("none");
   auto* o_duration = app.add_option("--duration", duration,
-                                    "Simulated time [s]: takes duration / dt steps, rounded up")
+                                    "Simulated time [s]: takes the whole number of steps "
+                                    "nearest duration / dt (at least one)")
                          ->default_str("none");
   auto* o_dt = app.add_option("--dt", dt,
                               "Time step [s] (default: a scene's own, its \"dt\" or an XML "

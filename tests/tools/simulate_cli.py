@@ -460,14 +460,20 @@ def length(simulate, source, work):
         check(result.returncode == 0, f"{args}: exit {result.returncode} {result.stderr}")
         return result
 
-    # --duration: 1 s at dt 0.01 is 100 steps; 0.105 s is 11 (rounded up); 0.3 s at 0.1 is 3
-    # (0.3 / 0.1 = 2.9999999999999996: within rounding of a whole number)
-    for duration, dt, steps in (("1", "0.01", 100), ("0.105", "0.01", 11), ("0.3", "0.1", 3)):
+    # --duration D: the whole number of steps nearest D / dt, at least one, so that the run ends
+    # within dt / 2 of D: 1 s at dt 0.01 is 100 steps; 0.104 s is 10 and 0.106 s is 11; 0.3 s at
+    # 0.1 is 3 (0.3 / 0.1 = 2.9999999999999996); 1.5 s at 0.0333333 (the README's drape) is 45,
+    # not 46 (1.5333 s); 0.001 s at 0.01 is one step
+    for duration, dt, steps in (("1", "0.01", 100), ("0.104", "0.01", 10), ("0.106", "0.01", 11),
+                                ("0.3", "0.1", 3), ("1.5", "0.0333333", 45),
+                                ("0.001", "0.01", 1)):
         result = ok(["chain.json", "--duration", duration, "--dt", dt, "--csv", "d.csv",
                      "--overwrite"])
         check(csv_frames(os.path.join(work, "d.csv")) == list(range(steps + 1)),
               f"--duration {duration} --dt {dt}: frames {csv_frames(os.path.join(work, 'd.csv'))}")
         check(f"{steps} steps" in result.stdout.splitlines()[0], f"header {result.stdout!r}")
+        check(steps == 1 or abs(steps * float(dt) - float(duration)) <= float(dt) / 2,
+              f"--duration {duration} --dt {dt}: {steps} steps end at {steps * float(dt)} s")
     # --frames counts written frames: 5 after the first, every 3rd step: 15 steps
     ok(["chain.json", "--frames", "5", "--every", "3", "--out", "f"])
     names = sorted(os.listdir(os.path.join(work, "f")))
