@@ -310,6 +310,9 @@ int main(int argc, char** argv) {
                  "times then include its energy check); 0 turns the check off")
       ->capture_default_str();
   app.add_flag("--quiet", c.quiet, "Print only the median milliseconds per frame");
+  app.set_version_flag("--version",
+                       std::string("massspring-simulate ") + MASSSPRING_PROJECT_VERSION,
+                       "Print the version (massspring-simulate MAJOR.MINOR.PATCH) and exit");
 
   // --help names what each value is (all numbers are taken as text, see above).
   for (CLI::Option* o : app.get_options()) {
@@ -348,11 +351,20 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ExtrasError&) {
+    // the arguments in the order given (CLI11's own message lists them in reverse)
+    const std::vector<std::string> extras = app.remaining();
+    std::string listed;
+    for (const std::string& a : extras) listed += (listed.empty() ? "" : " ") + a;
+    std::fprintf(stderr,
+                 "massspring-simulate: The following argument%s not expected: %s%s (see --help)\n",
+                 extras.size() > 1 ? "s were" : " was", listed.c_str(),
+                 simulate::did_you_mean(app, argc, argv).c_str());
+    return simulate::kExitBadInput;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "massspring-simulate: %s%s (see --help)\n", e.what(),
-                 e.get_exit_code() == static_cast<int>(CLI::ExitCodes::ExtrasError)
-                     ? simulate::did_you_mean(app, argc, argv).c_str()
-                     : "");
+    std::fprintf(stderr, "massspring-simulate: %s (see --help)\n", e.what());
     return simulate::kExitBadInput;
   }
 

@@ -9,7 +9,8 @@ CASE is one of
              message (one line, prefixed "massspring-simulate: "), nothing on stdout (no run
              started), and the work folder byte for byte as it was (nothing written or removed);
              `--table` prints the table instead of checking it
-  help       --help exits 0 and shows a default for every option that takes a value
+  help       --help exits 0 and shows a default for every option that takes a value; --version
+             prints the project's version and exits 0
   overwrite  --overwrite replaces an existing CSV and the frames of an earlier run (never mixed)
   rename     the CSV's final rename fails (its name became a folder during the run): the .tmp is
              kept, whole, and the message names it; the header line arrives while the run goes on
@@ -208,13 +209,16 @@ REFUSALS = [
      "given elimination order (use Sparse storage)"),
     (["chain.json", "--bogus"], "The following argument was not expected: --bogus (see --help)"),
     (["chain.json", "--iteration", "5"],
-     "The following arguments were not expected: 5 --iteration (did you mean --iterations?) "
+     "The following arguments were not expected: --iteration 5 (did you mean --iterations?) "
      "(see --help)"),
     (["chain.json", "--integrater=rk4"],
      "The following argument was not expected: --integrater=rk4 (did you mean --integrator?) "
      "(see --help)"),
     (["chain.json", "--dtt", "0.1"],
-     "The following arguments were not expected: 0.1 --dtt (did you mean --dt?) (see --help)"),
+     "The following arguments were not expected: --dtt 0.1 (did you mean --dt?) (see --help)"),
+    # listed in the order given
+    (["chain.json", "a", "b", "--bogus", "c"],
+     "The following arguments were not expected: a b --bogus c (see --help)"),
     (["chain.json", "--self"],
      "The following argument was not expected: --self (did you mean --self-collision?) "
      "(see --help)"),
@@ -291,11 +295,12 @@ def refusals(simulate, source, work, table):
         print(f"OK: {len(REFUSALS)} refusals, each exit 1 with its message, nothing written")
 
 
-def help_text(simulate, work):
+def help_text(simulate, source, work):
     result = run(simulate, ["--help"], work)
+    help_text_out = result.stdout
     check(result.returncode == 0, f"--help: exit {result.returncode}")
     check(result.stderr == "", f"--help: stderr {result.stderr!r}")
-    flags = {"--help", "--overwrite", "--quiet"}
+    flags = {"--help", "--overwrite", "--quiet", "--version"}
     options = 0
     for line in result.stdout.splitlines():
         words = line.split()
@@ -313,7 +318,19 @@ def help_text(simulate, work):
                  "--newton-tolerance", "--line-search", "--save-state", "--save-every",
                  "--overwrite", "--self-collision"):
         check(name in result.stdout, f"--help does not list {name}")
-    print(f"OK: --help exits 0, {options} options each with a default")
+    # --version: the project's version (CMake's project(VERSION), read from version.hpp), exit 0
+    with open(os.path.join(source, "include", "massspring", "version.hpp")) as handle:
+        parts = dict(re.findall(r"^#define MASSSPRING_VERSION_(MAJOR|MINOR|PATCH) (\d+)$",
+                                handle.read(), re.M))
+    expected = f"massspring-simulate {parts['MAJOR']}.{parts['MINOR']}.{parts['PATCH']}\n"
+    for args in (["--version"], ["--generate", "chain", "--version"]):
+        result = run(simulate, args, work)
+        check(result.returncode == 0 and result.stdout == expected and result.stderr == "",
+              f"{args}: exit {result.returncode}, {result.stdout!r} {result.stderr!r}, expected "
+              f"{expected!r}")
+    check("--version" in help_text_out, "--help does not list --version")
+    print(f"OK: --help exits 0, {options} options each with a default; --version prints "
+          f"{expected.strip()!r}")
 
 
 def rows(path):
@@ -735,7 +752,7 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     cases = {"refusals": lambda: refusals(simulate, source, work, table),
-             "help": lambda: help_text(simulate, work),
+             "help": lambda: help_text(simulate, source, work),
              "overwrite": lambda: overwrite(simulate, source, work),
              "rename": lambda: rename(simulate, source, work),
              "killed": lambda: killed(simulate, source, work),
