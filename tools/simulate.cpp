@@ -142,6 +142,10 @@ int main(int argc, char** argv) {
       "backward Euler. Exit status: 0 done, 1 invalid input or output, 2 diverged, 128+signal "
       "interrupted (130 SIGINT, 143 SIGTERM)."};
   app.get_formatter()->column_width(36);
+  app.footer(
+      "Outputs (--out, --csv, --html, --pc2, --vtk, --save-state): every one is checked before "
+      "the first step; the missing folders of its path are created once every check has passed; "
+      "an existing file is replaced only with --overwrite.");
   app.add_option("scene", c.scene,
                  "Scene file: .json (+ .obj, the JSON+OBJ scene format; or a state saved by "
                  "--save-state) or .xml (FOSSSim's)");

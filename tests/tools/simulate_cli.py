@@ -26,6 +26,8 @@ CASE is one of
              in a short run at the default 10 s)
   hint       an explicit integrator that diverges is told the step stable_time_step() gives, and
              a run at that step (symplectic Euler) does not diverge
+  folders    every output (--out, --csv, --html, --pc2, --vtk, --save-state) creates the missing
+             folders of its path, alone and all at once; --help says so
   readme     every ```sh block of README.md that runs massspring-simulate, run as printed (in a
              copy of the scenes) twice: both exit 0, and everything written is under out/
   resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
@@ -116,8 +118,12 @@ REFUSALS = [
     (["chain.json", "--csv", "t.csv"],
      "--csv t.csv: t.csv.tmp exists, left by an earlier run that did not finish (killed?); it "
      "may hold its output: move or delete it, or give --overwrite to replace it"),
-    (["chain.json", "--csv", "no/such/folder/x.csv"],
-     "--csv no/such/folder/x.csv: the folder no/such/folder does not exist"),
+    # a missing folder is created (the folders case); a file where a folder should be is refused
+    (["chain.json", "--csv", "file.txt/such/x.csv"],
+     "--csv file.txt/such/x.csv: file.txt is not a folder"),
+    # a refused run creates no folder for its other outputs
+    (["chain.json", "--csv", "new/x.csv", "--html", "existing.csv"],
+     "--html existing.csv: exists; give --overwrite to replace it, or choose another name"),
     (["chain.json", "--csv", "a.csv", "--save-state", "a.csv"],
      "--csv a.csv: another output of this run is a.csv; give each output its own file"),
     (["chain.json", "--out", "stale"],
@@ -127,8 +133,7 @@ REFUSALS = [
     (["chain.json", "--html", "existing.csv"],
      "--html existing.csv: exists; give --overwrite to replace it, or choose another name"),
     (["chain.json", "--html", "adir.json"], "--html adir.json: is a directory; give a file name"),
-    (["chain.json", "--html", "no/such/x.html"],
-     "--html no/such/x.html: the folder no/such does not exist"),
+    (["chain.json", "--html", "file.txt/x.html"], "--html file.txt/x.html: file.txt is not a folder"),
     (["chain.json", "--html", "chain.json"],
      "--html chain.json: is chain.json, a file this run reads; choose another name"),
     (["chain.json", "--html", "a.out", "--csv", "a.out"],
@@ -144,8 +149,11 @@ REFUSALS = [
     (["chain.json", "--pc2", "chain.pc2"],
      "--pc2 chain.pc2: its rest mesh chain.obj: is chain.obj, a file this run reads; choose "
      "another name"),
-    (["chain.json", "--pc2", "no/such/r.pc2"],
-     "--pc2 no/such/r.pc2: the folder no/such does not exist"),
+    (["chain.json", "--pc2", "file.txt/r.pc2"], "--pc2 file.txt/r.pc2: file.txt is not a folder"),
+    (["chain.json", "--out", "file.txt/f"], "--out file.txt/f: file.txt is not a folder"),
+    (["chain.json", "--vtk", "file.txt/v"], "--vtk file.txt/v: file.txt is not a folder"),
+    (["chain.json", "--save-state", "file.txt/s.json"],
+     "--save-state file.txt/s.json: file.txt is not a folder"),
     (["chain.json", "--vtk", "file.txt"], "--vtk file.txt: exists and is not a folder"),
     (["chain.json", "--vtk", "oldvtk"],
      "--vtk oldvtk: holds 2 files of an earlier run (frame_00000.vtu ... run.pvd); give "
@@ -582,6 +590,33 @@ def hint(simulate, source, work):
     print(f"OK: the hint's step {step} s runs symplectic Euler 2000 steps without diverging")
 
 
+def folders(simulate, source, work):
+    """Every output creates the missing folders of its path: one rule for all of them."""
+    prepare(source, work)
+    outputs = {"--out": "new/out/frames", "--csv": "new/csv/t.csv", "--html": "new/html/p.html",
+               "--pc2": "new/pc2/c.pc2", "--vtk": "new/vtk/series",
+               "--save-state": "new/state/s.json"}
+    written = {"--out": "new/out/frames/frame_00003.obj", "--pc2": "new/pc2/c.obj",
+               "--vtk": "new/vtk/series/run.pvd"}
+    for option, path in outputs.items():
+        result = run(simulate, ["chain.json", "--steps", "3", option, path], work)
+        check(result.returncode == 0, f"{option} {path}: exit {result.returncode} {result.stderr}")
+        for f in (path, written.get(option, path)):
+            check(os.path.exists(os.path.join(work, f)), f"{option} {path}: {f} not written")
+    # all at once, two levels deep
+    args = ["chain.json", "--steps", "3"]
+    for option, path in outputs.items():
+        args += [option, "all/x/" + path]
+    result = run(simulate, args, work)
+    check(result.returncode == 0, f"{args}: exit {result.returncode} {result.stderr}")
+    for option, path in outputs.items():
+        check(os.path.exists(os.path.join(work, "all/x/" + written.get(option, path))),
+              f"all at once: {option} not written")
+    help_out = run(simulate, ["--help"], work).stdout
+    check("missing folders" in " ".join(help_out.split()), "--help does not state the rule")
+    print(f"OK: {len(outputs)} outputs each create the missing folders of their path")
+
+
 def readme(simulate, source, work):
     """The README's massspring-simulate commands, as printed, twice, in a copy of the scenes."""
     shutil.rmtree(work, ignore_errors=True)
@@ -761,6 +796,7 @@ def main():
              "progress": lambda: progress(simulate, source, work),
              "hint": lambda: hint(simulate, source, work),
              "readme": lambda: readme(simulate, source, work),
+             "folders": lambda: folders(simulate, source, work),
              "resume": lambda: resume(simulate, source, work)}
     if case not in cases:
         fail(f"unknown case {case}")

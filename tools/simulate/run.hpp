@@ -293,8 +293,13 @@ class RunFiles {
       : c_(c), s_(s), out_(c.out), last_frame_(p.first_frame + p.steps) {
     if (!c.out.empty()) {
       if (c.overwrite) clear_frames(out_);
-      fs::create_directories(out_);
+      create_folders("--out", out_, out_);
     }
+    // every output file's missing folders (checked writable above them)
+    for (const auto& [option, file] :
+         {std::pair{"--csv", c.csv}, std::pair{"--html", c.html}, std::pair{"--pc2", c.pc2},
+          std::pair{"--save-state", c.save_state}})
+      if (!file.empty()) create_folders(option, file, folder_of(file));
     if (!c.csv.empty()) csv_.emplace(c.csv);
     if (!c.html.empty() || !c.pc2.empty() || !c.vtk.empty())
       exports_.emplace(c, s, p.dt, p.first_frame);
