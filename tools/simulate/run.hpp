@@ -629,11 +629,10 @@ int run(const Config& c, Setup<System>& s) {
   if (!c.save_state.empty())
     for (int k = 0; k < system.forces().size(); ++k) {
       const std::string term = system.forces()[k].name;
-      if (term != "gravity" && term != "constant force" && term != "linear drag" &&
-          term != "gravitational attraction" && term != "vortex force")
+      if (!massspring::io::state_holds_force_term(term))
         throw Error("--save-state " + c.save_state + ": " + s.name + " has a " + term +
                     " term, which a state file cannot hold (it holds " +
-                    massspring::io::detail::kStateForceTerms + ")");
+                    massspring::io::state_force_terms_text() + ")");
     }
 
   Plan plan = p;
