@@ -32,6 +32,7 @@
 #include <functional>
 #include <massspring/massspring.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -364,6 +365,51 @@ std::vector<LiuRow> liu_table(int n, bool quick, std::string& description) {
   return rows;
 }
 
+// The scenes, in the order they run; the cloths only in the full benchmark (not --quick).
+const std::vector<std::string> kScenes = {"chain", "net", "orbit", "cloth32", "cloth64"};
+bool full_only(const std::string& name) { return name.rfind("cloth", 0) == 0; }
+
+// The scenes to run for --scenes `list` (comma-separated; empty: every scene), in kScenes's
+// order. Throws std::invalid_argument naming the unknown names and the known ones, or when
+// nothing is left to run; prints to stderr the named scenes --quick leaves out.
+std::vector<std::string> scene_names(const std::string& list, bool quick) {
+  std::vector<std::string> asked, unknown, dropped, out;
+  std::stringstream in(list);
+  for (std::string name; std::getline(in, name, ',');)
+    if (!name.empty()) asked.push_back(name);
+  std::string known;
+  for (const std::string& name : kScenes) known += (known.empty() ? "" : ", ") + name;
+  for (const std::string& name : asked)
+    if (std::find(kScenes.begin(), kScenes.end(), name) == kScenes.end()) unknown.push_back(name);
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s;
+  };
+  if (!unknown.empty())
+    throw std::invalid_argument("--scenes: unknown scene" +
+                                std::string(unknown.size() > 1 ? "s " : " ") + joined(unknown) +
+                                " (the scenes: " + known + ")");
+  if (!list.empty() && asked.empty())
+    throw std::invalid_argument("--scenes: no scene named (the scenes: " + known + ")");
+  for (const std::string& name : kScenes) {
+    const bool wanted = asked.empty() || std::find(asked.begin(), asked.end(), name) != asked.end();
+    if (!wanted) continue;
+    if (quick && full_only(name)) {
+      if (!asked.empty()) dropped.push_back(name);
+      continue;
+    }
+    out.push_back(name);
+  }
+  if (!dropped.empty())
+    std::fprintf(stderr,
+                 "pareto: --quick leaves out %s (the cloths run in the full benchmark only)\n",
+                 joined(dropped).c_str());
+  if (out.empty())
+    throw std::invalid_argument("--scenes " + list + " with --quick: no scene left to run");
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -392,7 +438,7 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else if (arg == "--scenes") {
-      only = "," + value() + ",";
+      only = value();
     } else if (arg == "--quick") {
       quick = true;
     } else if (arg == "--references-only") {
@@ -411,16 +457,22 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (min_time < 0) min_time = quick ? 0 : 0.2;
+  std::vector<std::string> names;
+  try {
+    names = scene_names(only, quick);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "pareto: %s\n", e.what());
+    return 2;
+  }
   std::filesystem::create_directories(out);
   std::vector<Scene> scenes;
-  auto wanted = [&](const std::string& name) {
-    return only.empty() || only.find("," + name + ",") != std::string::npos;
-  };
-  if (wanted("chain")) scenes.push_back(chain_scene());
-  if (wanted("net")) scenes.push_back(net_scene());
-  if (wanted("orbit")) scenes.push_back(orbit_scene());
-  if (!quick && wanted("cloth32")) scenes.push_back(cloth_scene(32, 50));
-  if (!quick && wanted("cloth64")) scenes.push_back(cloth_scene(64, 50));
+  for (const std::string& name : names) {
+    if (name == "chain") scenes.push_back(chain_scene());
+    if (name == "net") scenes.push_back(net_scene());
+    if (name == "orbit") scenes.push_back(orbit_scene());
+    if (name == "cloth32") scenes.push_back(cloth_scene(32, 50));
+    if (name == "cloth64") scenes.push_back(cloth_scene(64, 50));
+  }
   if (quick)
     for (auto& s : scenes) s.end_time = std::min(s.end_time, 0.25);
 

@@ -39,20 +39,10 @@ void set_surface(System& s, const py::handle& t) {
   idle(s, "set_surface").set_surface(Triangles(triangles));
 }
 
-}  // namespace
+using SystemClass = py::class_<System>;
 
-void bind_system(py::module_& m) {
-  py::class_<System> c(m, "MassSpringSystem", R"doc(
-A network of point masses joined by springs (MassSpringSystem<double, Sparse>).
-
-MassSpringSystem(rest_positions, springs, mass, stiffness, rest_lengths=None, damping=None)
-  rest_positions  (n, 3) float64 [m]; positions start here, at rest
-  springs         (m, 2) integer point indices, 0-based; no self or duplicate springs
-  mass            one mass for every point, or (n,) masses [kg], each > 0
-  stiffness       one stiffness for every spring, or (m,) [N/m], each >= 0
-  rest_lengths    (m,) [m], default: the distances between the rest positions
-  damping         (m,) damping along each spring [N s/m], default 0
-Invalid input raises massspring.Error and builds nothing.)doc");
+// MassSpringSystem(rest_positions, springs, mass, stiffness, rest_lengths=None, damping=None).
+void bind_construction(SystemClass& c) {
   c.def(py::init([](const py::handle& v, const py::handle& e, const py::handle& mass,
                     const py::handle& stiffness, const py::handle& rest_lengths,
                     const py::handle& damping) {
@@ -68,13 +58,18 @@ Invalid input raises massspring.Error and builds nothing.)doc");
         }),
         py::arg("rest_positions"), py::arg("springs"), py::arg("mass"), py::arg("stiffness"),
         py::arg("rest_lengths") = py::none(), py::arg("damping") = py::none());
+}
 
-  // sizes
+// num_points, num_springs, num_pinned.
+void bind_sizes(SystemClass& c) {
   c.def_property_readonly("num_points", &System::num_points, "Number of points n.");
   c.def_property_readonly("num_springs", &System::num_springs, "Number of springs m.");
   c.def_property_readonly("num_pinned", &System::num_pinned, "Number of pinned points.");
+}
 
-  // model: copies (the library may reallocate them)
+// The model: rest positions and springs (read only), masses, stiffness, rest lengths and damping
+// (properties and set_* methods); copies, as the library may reallocate them.
+void bind_model(SystemClass& c) {
   c.def_property_readonly(
       "rest_positions", [](const System& s) { return copy_array(s.rest_positions()); },
       "(n, 3) rest positions [m] (a copy).");
@@ -131,8 +126,10 @@ Invalid input raises massspring.Error and builds nothing.)doc");
         idle(s, "set_damping").set_damping(real_vector(x, "damping", s.num_springs(), true));
       },
       py::arg("damping"));
+}
 
-  // pins
+// pin (a point, a point and its target, a list), unpin, set_pin_target, and the pins read back.
+void bind_pins(SystemClass& c) {
   c.def(
       "pin", [](System& s, int i) { idle(s, "pin").pin(i); }, py::arg("i"),
       "Pins point i at its rest position.");
@@ -171,8 +168,10 @@ Invalid input raises massspring.Error and builds nothing.)doc");
       "(p, 3) targets [m], row r for point pinned[r] (a copy).");
   c.def("is_pinned", &System::is_pinned, py::arg("i"));
   c.def("pin_row", &System::pin_row, py::arg("i"));
+}
 
-  // state: views of the system's own buffers
+// positions and velocities: views of the system's own buffers; assigned whole (checked).
+void bind_state(SystemClass& c) {
   c.def_property(
       "positions",
       [](const py::object& self) {
@@ -193,8 +192,11 @@ Invalid input raises massspring.Error and builds nothing.)doc");
       "assign a whole array to set them (checked).");
   c.def("set_positions", &set_positions, py::arg("positions"));
   c.def("set_velocities", &set_velocities, py::arg("velocities"));
+}
 
-  // force terms (add_force is added by forces.cpp)
+// The force terms' names and clear_forces (add_force is added by forces.cpp); has_spring_damping
+// and revision.
+void bind_force_list(SystemClass& c) {
   c.def_property_readonly(
       "forces",
       [](const System& s) {
@@ -209,7 +211,10 @@ Invalid input raises massspring.Error and builds nothing.)doc");
   c.def_property_readonly("has_spring_damping", &System::has_spring_damping);
   c.def_property_readonly("revision", &System::revision,
                           "Changes whenever masses, stiffness, springs, pins or forces change.");
-  // the surface and self-collision (contact/self_collision.hpp)
+}
+
+// massspring.SelfCollision: the parameters of self-collision (contact/self_collision.hpp).
+void bind_self_collision_parameters(py::module_& m) {
   using SelfCollision = contact::SelfCollision<double>;
   py::class_<SelfCollision>(m, "SelfCollision", R"doc(
 Self-collision parameters (contact/self_collision.hpp).
@@ -237,6 +242,11 @@ Out-of-range values raise massspring.Error.)doc")
         return detail::message("SelfCollision(thickness=", p.thickness, ", friction=", p.friction,
                                ")");
       });
+}
+
+// The surface (set_surface, surface, surface_edges) and self-collision on it.
+void bind_surface(SystemClass& c) {
+  using SelfCollision = contact::SelfCollision<double>;
   c.def("set_surface", &set_surface, py::arg("triangles"),
         "Sets the surface: an (n, 3) integer array of point indices, 0-based (an empty array "
         "removes it). A triangle out of range, with a repeated point or of zero area raises "
@@ -266,8 +276,11 @@ Out-of-range values raise massspring.Error.)doc")
   c.def_property_readonly(
       "self_collision", [](const System& s) { return s.self_collision(); },
       "The SelfCollision parameters, or None when it is off.");
+}
 
-  // copies: the model, the state, the force terms, the colliders (not shared with the original)
+// copy, __copy__, __deepcopy__ (the model, the state, the force terms, the colliders: not shared
+// with the original) and __repr__.
+void bind_copies(SystemClass& c) {
   c.def(
       "copy",
       [](const System& s) {
@@ -296,6 +309,31 @@ Out-of-range values raise massspring.Error.)doc")
                                : std::string(),
                            s.self_collision() ? ", self-collision" : "", ")");
   });
+}
+
+}  // namespace
+
+void bind_system(py::module_& m) {
+  py::class_<System> c(m, "MassSpringSystem", R"doc(
+A network of point masses joined by springs (MassSpringSystem<double, Sparse>).
+
+MassSpringSystem(rest_positions, springs, mass, stiffness, rest_lengths=None, damping=None)
+  rest_positions  (n, 3) float64 [m]; positions start here, at rest
+  springs         (m, 2) integer point indices, 0-based; no self or duplicate springs
+  mass            one mass for every point, or (n,) masses [kg], each > 0
+  stiffness       one stiffness for every spring, or (m,) [N/m], each >= 0
+  rest_lengths    (m,) [m], default: the distances between the rest positions
+  damping         (m,) damping along each spring [N s/m], default 0
+Invalid input raises massspring.Error and builds nothing.)doc");
+  bind_construction(c);
+  bind_sizes(c);
+  bind_model(c);
+  bind_pins(c);
+  bind_state(c);
+  bind_force_list(c);
+  bind_self_collision_parameters(m);  // before the methods that take or return it
+  bind_surface(c);
+  bind_copies(c);
 }
 
 }  // namespace massspring::python

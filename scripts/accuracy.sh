@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the accuracy studies in docs/: run time against error (docs/benchmarks.md,
-# docs/images/pareto_*.png; scripts/pareto.sh) and the stability stress suite (docs/stability.md,
-# docs/images/stability_*.png; scripts/stability.sh). About 17 minutes on 2 cores (6 + 11), plus
-# 15 s the first time for the RK4 references cached in out/reference/.
+# docs/images/pareto_*.png; scripts/pareto.sh --update-docs) and the stability stress suite
+# (docs/stability.md, docs/images/stability_*.png; scripts/stability.sh). The RK4 references are
+# cached in out/reference/, computed the first time.
 #
 #   scripts/accuracy.sh
 #
@@ -10,5 +10,5 @@
 # (stability.sh: some explicit run at or below stable_time_step() was not stable).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/pareto.sh
+scripts/pareto.sh --update-docs
 scripts/stability.sh

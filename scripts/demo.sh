@@ -7,7 +7,9 @@
 # builds only massspring-simulate, in its own build folder (tests, benchmarks and the Python module
 # off, so that their packages are not needed).
 # Output: out/demo/ (frames/*.obj, trajectory.csv, drape.html, drape.png, drape.gif); open
-# drape.html in a web browser to orbit, zoom and play the drape (one file, works offline).
+# drape.html in a web browser to orbit, zoom and play the drape (one file, works offline). A
+# rerun first removes those files of the previous run (scripts/demo_clean.sh, which names them),
+# and nothing else.
 # Env: BUILD_DIR (default build-demo)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -22,7 +24,8 @@ cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target massspring_s
 # Debian's python3 (with python3-matplotlib), not whatever python3 comes first on PATH.
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
-rm -rf "$out"
+# the previous demo's files only (named as it removes them); anything else in out/demo stays
+scripts/demo_clean.sh "$out"
 mkdir -p "$out"
 # The drape (examples/scenes/drape.json): a cloth dropped over a sphere onto a floor, friction 0.3
 # on both; the scene carries its gravity. At the tool's usual step, 1/30 s (the scene's own is

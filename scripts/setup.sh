@@ -2,8 +2,9 @@
 # Installs the Debian packages massspring needs: `scripts/setup.sh` everything the build, tests,
 # benchmarks, fuzzing and demo use (scripts/test.sh); `scripts/setup.sh demo` only what
 # scripts/demo.sh uses (compiler, CMake, the library's and massspring-simulate's dependencies,
-# matplotlib, three.js for the demo's page); `--print` lists the packages of the set instead of
-# installing them.
+# matplotlib, three.js for the demo's page); `scripts/setup.sh pareto` only what scripts/pareto.sh
+# uses (compiler, CMake, Eigen, Google Benchmark, matplotlib); `--print` lists the packages of the
+# set instead of installing them.
 # Idempotent: does nothing when everything is there; runs apt-get update only when something is
 # missing. Uses sudo when not root.
 set -euo pipefail
@@ -16,6 +17,12 @@ demo=(
   libcli11-dev                      # tools: command lines
   python3 python3-matplotlib        # rendering pictures of frames
   zlib1g-dev libjs-three            # massspring-simulate --html: deflated positions, three.js
+)
+pareto=(
+  build-essential cmake ccache      # compiler, build system, compiler cache
+  libeigen3-dev                     # the library's one dependency
+  libbenchmark-dev                  # benchmarks/CMakeLists.txt needs it (pareto itself does not)
+  python3 python3-matplotlib        # scripts/plot_pareto.py
 )
 more=(
   doctest-dev                       # tests
@@ -36,16 +43,19 @@ set_name=all
 print=0
 for arg in "$@"; do
   case "$arg" in
-    demo | all) set_name=$arg ;;
+    demo | pareto | all) set_name=$arg ;;
     --print) print=1 ;;
     *)
-      echo "setup: unknown argument \"$arg\" (expected demo, all or --print)" >&2
+      echo "setup: unknown argument \"$arg\" (expected demo, pareto, all or --print)" >&2
       exit 1
       ;;
   esac
 done
-packages=("${demo[@]}")
-[ "$set_name" = demo ] || packages+=("${more[@]}")
+case "$set_name" in
+  demo) packages=("${demo[@]}") ;;
+  pareto) packages=("${pareto[@]}") ;;
+  *) packages=("${demo[@]}" "${more[@]}") ;;
+esac
 if [ "$print" = 1 ]; then
   printf '%s\n' "${packages[@]}"
   exit 0

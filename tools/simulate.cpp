@@ -119,76 +119,101 @@ int run_scene(const Config& c) {
   return simulate::run(c, s);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Config c;
-  // Numbers are taken as text and read by simulate/numbers.hpp (messages quote the text).
-  // The solvers' defaults are the library's (Config's, from FastMassSpringOptions and
-  // BackwardEulerOptions), written as numbers are in messages.
-  const auto text = [](auto x) { return massspring::detail::message(x); };
+// The values of the options that take numbers or vectors, as given (read by
+// simulate/numbers.hpp, whose messages quote the text); each starts as its default, written as
+// numbers are in messages. The solvers' defaults are the library's (Config's, from
+// FastMassSpringOptions and BackwardEulerOptions).
+struct OptionText {
+  explicit OptionText(const Config& c) {
+    const auto text = [](auto x) { return massspring::detail::message(x); };
+    iterations = text(c.iterations);
+    tolerance = text(c.tolerance);
+    penalty_weight = text(c.penalty_weight);
+    contact_weight = text(c.contact_weight);
+    rho = text(c.chebyshev_rho);
+    gamma = text(c.chebyshev_gamma);
+    delay = text(c.chebyshev_delay);
+    estimate = text(c.chebyshev_estimate);
+    window = text(c.anderson_window);
+    threads = text(c.threads);
+    newton_iterations = text(c.newton_iterations);
+    newton_tolerance = text(c.newton_tolerance);
+  }
   std::string steps = "300", frames, duration, progress = "10", dt = "0.0333333", shrink = "0",
-              iterations = text(c.iterations), tolerance = text(c.tolerance),
-              penalty_weight = text(c.penalty_weight), contact_weight = text(c.contact_weight),
-              every = "1", guard_growth = "100", rho = text(c.chebyshev_rho),
-              gamma = text(c.chebyshev_gamma), delay = text(c.chebyshev_delay),
-              estimate = text(c.chebyshev_estimate), window = text(c.anderson_window),
-              threads = text(c.threads), newton_iterations = text(c.newton_iterations),
-              newton_tolerance = text(c.newton_tolerance), save_every = "0", self_collision;
+              every = "1", guard_growth = "100", save_every = "0", self_collision;
+  std::string iterations, tolerance, penalty_weight, contact_weight, rho, gamma, delay, estimate,
+      window, threads, newton_iterations, newton_tolerance;
   std::vector<std::string> force{"0", "0", "0"}, gravity{"0", "-9.8", "0"};
+};
 
-  CLI::App app{
-      "Simulate a mass-spring scene: local-global (Liu et al. 2013), forward, symplectic or "
-      "backward Euler. Exit status: 0 done, 1 invalid input or output, 2 diverged, 128+signal "
-      "interrupted (130 SIGINT, 143 SIGTERM)."};
-  app.get_formatter()->column_width(36);
+// The options whose presence matters after parsing: which one set the run's length, what was
+// given rather than defaulted, and the options of one integrator or one acceleration (refused
+// with another: simulate/run.hpp).
+struct GivenOptions {
+  CLI::Option *steps = nullptr, *frames = nullptr, *duration = nullptr, *dt = nullptr,
+              *integrator = nullptr, *force = nullptr, *gravity = nullptr,
+              *self_collision = nullptr;
+  std::vector<CLI::Option*> fast_mass_spring, chebyshev, anderson, backward_euler, contact;
+};
+
+// The scene: a file, or --generate.
+void add_scene_options(CLI::App& app, Config& c) {
   app.add_option("scene", c.scene,
                  "Scene file: .json (+ .obj, the JSON+OBJ scene format; or a state saved by "
                  "--save-state) or .xml (FOSSSim's)");
   app.add_option("--generate", c.generate,
                  "Generate the scene instead: cloth[:COLSxROWS], chain[:POINTS], net[:COLSxROWS]")
       ->default_str("none");
-  // The length of the run: one of --steps, --frames, --duration (a saved state: after it).
-  auto* o_steps = app.add_option("--steps", steps,
-                                 "Steps of --dt to take (default when none of --steps, --frames, "
-                                 "--duration is given; an XML scene: its duration / dt)")
-                      ->capture_default_str();
-  auto* o_frames = app.add_option("--frames", frames,
-                                  "Frames to write after the first: takes FRAMES x --every steps")
-                       ->default_str("none");
-  auto* o_duration = app.add_option("--duration", duration,
-                                    "Simulated time [s]: takes duration / dt steps, rounded up")
-                         ->default_str("none");
-  auto* o_dt = app.add_option("--dt", dt,
-                              "Time step [s] (default: a scene's own, its \"dt\" or an XML "
-                              "scene's; a saved state: its run's; else 1/30)")
-                   ->capture_default_str();
-  auto* o_integrator =
+}
+
+// The length of the run (one of --steps, --frames, --duration; a saved state: after it), the
+// step --dt, the integrator and --shrink.
+void add_run_options(CLI::App& app, Config& c, OptionText& t, GivenOptions& g) {
+  g.steps = app.add_option("--steps", t.steps,
+                           "Steps of --dt to take (default when none of --steps, --frames, "
+                           "--duration is given; an XML scene: its duration / dt)")
+                ->capture_default_str();
+  g.frames = app.add_option("--frames", t.frames,
+                            "Frames to write after the first: takes FRAMES x --every steps")
+                 ->default_str("none");
+  g.duration = app.add_option("--duration", t.duration,
+                              "Simulated time [s]: takes the whole number of steps "
+                              "nearest duration / dt (at least one)")
+                   ->default_str("none");
+  g.dt = app.add_option("--dt", t.dt,
+                        "Time step [s] (default: a scene's own, its \"dt\" or an XML "
+                        "scene's; a saved state: its run's; else 1/30)")
+             ->capture_default_str();
+  g.integrator =
       app.add_option("--integrator", c.integrator,
                      "Integrator (default: an XML scene's or a saved state's; else "
                      "fast-mass-spring)")
           ->check(CLI::IsMember(massspring::integrator_names(massspring::IntegratorNaming::Cli)))
           ->default_str("fast-mass-spring");
-  app.add_option("--shrink", shrink,
+  app.add_option("--shrink", t.shrink,
                  "Shrink every rest length as l0(t) = l0(0) exp(-RATE t) [1/s] (0: never)")
       ->capture_default_str();
-  // Options of one integrator (or one acceleration): refused with another (simulate/run.hpp).
-  std::vector<CLI::Option*> fms, chebyshev, anderson, be, contact;
-  fms.push_back(app.add_option("--iterations", iterations,
+}
+
+// The solvers' options: fast-mass-spring's (with Chebyshev's and Anderson's), contact inside the
+// solve, backward Euler's; each recorded in its group of `g`.
+void add_solver_options(CLI::App& app, Config& c, OptionText& t, GivenOptions& g) {
+  auto& fms = g.fast_mass_spring;
+  fms.push_back(app.add_option("--iterations", t.iterations,
                                "fast-mass-spring: most local-global iterations per step")
                     ->capture_default_str());
-  fms.push_back(app.add_option("--tolerance", tolerance,
+  fms.push_back(app.add_option("--tolerance", t.tolerance,
                                "fast-mass-spring: stop iterating when the relative energy "
                                "decrease is <= this (0: never)")
                     ->capture_default_str());
   fms.push_back(app.add_option("--pins", c.pins, "fast-mass-spring: how pinned points are held")
                     ->check(CLI::IsMember(massspring::option_names<massspring::PinMode>()))
                     ->capture_default_str());
-  fms.push_back(app.add_option("--penalty-weight", penalty_weight,
+  fms.push_back(app.add_option("--penalty-weight", t.penalty_weight,
                                "fast-mass-spring: penalty weight w for --pins penalty [N/m]")
                     ->capture_default_str());
-  contact.push_back(
-      app.add_option("--contact-weight", contact_weight,
+  g.contact.push_back(
+      app.add_option("--contact-weight", t.contact_weight,
                      "fast-mass-spring, backward-euler, linearized-backward-euler: weight "
                      "alpha of contact and friction inside the solve (0: at the end of the "
                      "step only), relative to each point's sqrt(m (m + dt^2 k)) / dt^2 (k its "
@@ -202,26 +227,26 @@ int main(int argc, char** argv) {
                      "2018)")
           ->check(CLI::IsMember(massspring::option_names<massspring::Acceleration>()))
           ->capture_default_str());
-  chebyshev.push_back(
-      app.add_option("--chebyshev-rho", rho,
+  g.chebyshev.push_back(
+      app.add_option("--chebyshev-rho", t.rho,
                      "chebyshev: spectral radius rho in [0, 1); 0: estimated (a saved "
                      "state: the estimate its run used)")
           ->capture_default_str());
-  chebyshev.push_back(
-      app.add_option("--chebyshev-gamma", gamma, "chebyshev: under-relaxation in (0, 1]")
+  g.chebyshev.push_back(
+      app.add_option("--chebyshev-gamma", t.gamma, "chebyshev: under-relaxation in (0, 1]")
           ->capture_default_str());
-  chebyshev.push_back(
-      app.add_option("--chebyshev-delay", delay,
+  g.chebyshev.push_back(
+      app.add_option("--chebyshev-delay", t.delay,
                      "chebyshev: plain iterations before the acceleration starts, >= 1")
           ->capture_default_str());
-  chebyshev.push_back(app.add_option("--chebyshev-estimate-iterations", estimate,
-                                     "chebyshev: trial iterations to estimate rho, >= 4")
-                          ->capture_default_str());
-  anderson.push_back(app.add_option("--anderson-window", window,
-                                    "anderson: past iterates in the fit, 1 to " +
-                                        std::to_string(massspring::kMaxAndersonWindow))
-                         ->capture_default_str());
-  fms.push_back(app.add_option("--threads", threads,
+  g.chebyshev.push_back(app.add_option("--chebyshev-estimate-iterations", t.estimate,
+                                       "chebyshev: trial iterations to estimate rho, >= 4")
+                            ->capture_default_str());
+  g.anderson.push_back(app.add_option("--anderson-window", t.window,
+                                      "anderson: past iterates in the fit, 1 to " +
+                                          std::to_string(massspring::kMaxAndersonWindow))
+                           ->capture_default_str());
+  fms.push_back(app.add_option("--threads", t.threads,
                                "fast-mass-spring: threads for the substitutions (sparse storage, "
                                "OpenMP), 1 to 256; the same result bit for bit")
                     ->capture_default_str());
@@ -235,17 +260,22 @@ int main(int argc, char** argv) {
                                "(X^t) or inertial (X^t + dt V^t)")
                     ->check(CLI::IsMember(massspring::option_names<massspring::InitialGuess>()))
                     ->capture_default_str());
-  be.push_back(app.add_option("--newton-iterations", newton_iterations,
+  auto& be = g.backward_euler;
+  be.push_back(app.add_option("--newton-iterations", t.newton_iterations,
                               "backward-euler: most Newton iterations per step")
                    ->capture_default_str());
-  be.push_back(app.add_option("--newton-tolerance", newton_tolerance,
+  be.push_back(app.add_option("--newton-tolerance", t.newton_tolerance,
                               "backward-euler: stop when max |dx| <= this (1 + max |x|)")
                    ->capture_default_str());
   be.push_back(app.add_option("--line-search", c.line_search,
                               "backward-euler: backtracking line search, on or off")
                    ->check(CLI::IsMember({"on", "off"}))
                    ->capture_default_str());
-  // --force and --gravity: three numbers, X,Y,Z
+}
+
+// What acts on the scene besides its springs: --force and --gravity (three numbers, X,Y,Z) and
+// --self-collision.
+void add_force_options(CLI::App& app, OptionText& t, GivenOptions& g) {
   auto add_vector3 = [&app](const char* name, std::vector<std::string>& target, const char* help) {
     return app.add_option(name, target, help)
         ->delimiter(',')
@@ -253,19 +283,24 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->type_name("X,Y,Z");
   };
-  auto* o_force = add_vector3("--force", force,
-                              "Force on every point [N], FX,FY,FZ, added as a ConstantForce term "
-                              "(not for XML scenes or saved states: they carry their own)");
-  auto* o_gravity = add_vector3("--gravity", gravity,
-                                "Acceleration of every point [m/s^2], GX,GY,GZ, added as a "
-                                "Gravity term (not for scenes that carry their own: XML scenes, "
-                                "saved states, JSON scenes with \"gravity\")");
-  auto* o_self_collision =
-      app.add_option("--self-collision", self_collision,
+  g.force = add_vector3("--force", t.force,
+                        "Force on every point [N], FX,FY,FZ, added as a ConstantForce term "
+                        "(not for XML scenes or saved states: they carry their own)");
+  g.gravity = add_vector3("--gravity", t.gravity,
+                          "Acceleration of every point [m/s^2], GX,GY,GZ, added as a "
+                          "Gravity term (not for scenes that carry their own: XML scenes, "
+                          "saved states, JSON scenes with \"gravity\")");
+  g.self_collision =
+      app.add_option("--self-collision", t.self_collision,
                      "Self-collision of the surface (the scene's polygons) with this thickness "
                      "[m], > 0, and friction 0.2; refused for a scene without polygons (default: "
                      "the scene's \"self_collision\", else off)")
           ->default_str("none");
+}
+
+// The system's storage and precision, the outputs, and how the run reports: --every,
+// --progress, --guard-growth, --quiet, --version.
+void add_output_options(CLI::App& app, Config& c, OptionText& t) {
   app.add_option("--storage", c.storage, "Matrix storage: sparse or dense")
       ->check(CLI::IsMember({"sparse", "dense"}))
       ->capture_default_str();
@@ -292,137 +327,205 @@ int main(int argc, char** argv) {
   app.add_option("--save-state", c.save_state,
                  "Save the final state here (a .json scene that resumes the run bit for bit)")
       ->default_str("none");
-  app.add_option("--save-every", save_every,
+  app.add_option("--save-every", t.save_every,
                  "Also save the state every N steps (0: at the end only)")
       ->capture_default_str();
   app.add_flag("--overwrite", c.overwrite,
                "Replace existing output files, a stale .tmp, and the frame files in --out");
-  app.add_option("--every", every,
+  app.add_option("--every", t.every,
                  "Write a frame every N steps (and the last); frame files are numbered by step")
       ->capture_default_str();
-  app.add_option("--progress", progress,
+  app.add_option("--progress", t.progress,
                  "Print a progress line (step, simulated time, time left) every this many "
                  "seconds of wall-clock time [s]; 0: never (--quiet: never)")
       ->capture_default_str();
-  app.add_option("--guard-growth", guard_growth,
+  app.add_option("--guard-growth", t.guard_growth,
                  "Stop when the total energy passes E(0) + G x scale (DivergenceGuard; the step "
                  "times then include its energy check); 0 turns the check off")
       ->capture_default_str();
   app.add_flag("--quiet", c.quiet, "Print only the median milliseconds per frame");
+  app.set_version_flag("--version",
+                       std::string("massspring-simulate ") + MASSSPRING_PROJECT_VERSION,
+                       "Print the version (massspring-simulate MAJOR.MINOR.PATCH) and exit");
+}
 
-  // --help names what each value is (all numbers are taken as text, see above).
+// --help names what each value is: INT, NUMBER or PATH (all numbers are taken as text).
+void name_value_types(CLI::App& app) {
+  static const std::vector<std::string> whole = {"--steps",
+                                                 "--frames",
+                                                 "--iterations",
+                                                 "--chebyshev-delay",
+                                                 "--chebyshev-estimate-iterations",
+                                                 "--anderson-window",
+                                                 "--threads",
+                                                 "--newton-iterations",
+                                                 "--every",
+                                                 "--save-every"};
+  static const std::vector<std::string> real = {"--dt",
+                                                "--duration",
+                                                "--progress",
+                                                "--shrink",
+                                                "--tolerance",
+                                                "--penalty-weight",
+                                                "--contact-weight",
+                                                "--chebyshev-rho",
+                                                "--chebyshev-gamma",
+                                                "--newton-tolerance",
+                                                "--guard-growth",
+                                                "--self-collision"};
+  static const std::vector<std::string> path = {"--out", "--csv", "--save-state", "--html",
+                                                "--pc2", "--vtk", "scene"};
+  auto in = [](const std::vector<std::string>& list, const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
   for (CLI::Option* o : app.get_options()) {
-    static const std::vector<std::string> whole = {"--steps",
-                                                   "--frames",
-                                                   "--iterations",
-                                                   "--chebyshev-delay",
-                                                   "--chebyshev-estimate-iterations",
-                                                   "--anderson-window",
-                                                   "--threads",
-                                                   "--newton-iterations",
-                                                   "--every",
-                                                   "--save-every"};
-    static const std::vector<std::string> real = {"--dt",
-                                                  "--duration",
-                                                  "--progress",
-                                                  "--shrink",
-                                                  "--tolerance",
-                                                  "--penalty-weight",
-                                                  "--contact-weight",
-                                                  "--chebyshev-rho",
-                                                  "--chebyshev-gamma",
-                                                  "--newton-tolerance",
-                                                  "--guard-growth",
-                                                  "--self-collision"};
     const std::string name = o->get_name();
-    if (std::find(whole.begin(), whole.end(), name) != whole.end()) o->type_name("INT");
-    if (std::find(real.begin(), real.end(), name) != real.end()) o->type_name("NUMBER");
-    if (name == "--out" || name == "--csv" || name == "--save-state" || name == "--html" ||
-        name == "--pc2" || name == "--vtk" || name == "scene")
-      o->type_name("PATH");
+    if (in(whole, name)) o->type_name("INT");
+    if (in(real, name)) o->type_name("NUMBER");
+    if (in(path, name)) o->type_name("PATH");
   }
+}
+
+// Parses the command line into the options; on --help, --version or a parse error, the exit
+// status (after printing the help, the version or the message), else nothing. Unexpected
+// arguments are listed in the order given, with the option an unknown one most likely stands for.
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ExtrasError&) {
+    // the arguments in the order given (CLI11's own message lists them in reverse)
+    const std::vector<std::string> extras = app.remaining();
+    std::string listed;
+    for (const std::string& a : extras) listed += (listed.empty() ? "" : " ") + a;
+    std::fprintf(stderr,
+                 "massspring-simulate: The following argument%s not expected: %s%s (see --help)\n",
+                 extras.size() > 1 ? "s were" : " was", listed.c_str(),
+                 simulate::did_you_mean(app, argc, argv).c_str());
+    return simulate::kExitBadInput;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "massspring-simulate: %s%s (see --help)\n", e.what(),
-                 e.get_exit_code() == static_cast<int>(CLI::ExitCodes::ExtrasError)
-                     ? simulate::did_you_mean(app, argc, argv).c_str()
-                     : "");
+    std::fprintf(stderr, "massspring-simulate: %s (see --help)\n", e.what());
     return simulate::kExitBadInput;
   }
+  return std::nullopt;
+}
+
+// Records in `c` which options were given (the length's option, --dt, --integrator, --gravity,
+// --force, --chebyshev-rho, and the names of every integrator's and acceleration's options
+// given). Throws Error when more than one of --steps, --frames and --duration is given.
+void record_given(const GivenOptions& g, Config& c) {
+  std::vector<std::string> lengths;
+  for (CLI::Option* o : {g.steps, g.frames, g.duration})
+    if (o->count() > 0) lengths.push_back(o->get_name());
+  if (lengths.size() > 1)
+    throw Error(lengths[0] + " and " + lengths[1] +
+                ": give one of --steps, --frames and --duration");
+  c.dt_given = g.dt->count() > 0;
+  c.integrator_given = g.integrator->count() > 0;
+  c.gravity_given = g.gravity->count() > 0;
+  c.force_given = g.force->count() > 0;
+  c.rho_given = g.chebyshev.front()->count() > 0;
+  for (auto [list, names] :
+       {std::pair{&g.fast_mass_spring, &c.given_fast_mass_spring},
+        std::pair{&g.chebyshev, &c.given_chebyshev}, std::pair{&g.anderson, &c.given_anderson},
+        std::pair{&g.backward_euler, &c.given_backward_euler},
+        std::pair{&g.contact, &c.given_contact}})
+    for (CLI::Option* o : *list)
+      if (o->count() > 0) names->push_back(o->get_name());
+}
+
+// Reads every number and vector given as text into `c`, each checked against its range
+// (simulate/numbers.hpp: Error naming the option and quoting the text), then the checks that
+// need two options: a scene file or --generate (exactly one), --save-every with --save-state.
+void read_values(const OptionText& t, const GivenOptions& g, Config& c) {
+  using simulate::parse_integer;
+  using simulate::parse_number;
+  if (g.steps->count() > 0) {
+    c.length = simulate::Length::Steps;
+    c.steps = parse_integer("--steps", t.steps, 0, 100000000);
+  } else if (g.frames->count() > 0) {
+    c.length = simulate::Length::Frames;
+    c.frames = parse_integer("--frames", t.frames, 0, 100000000);
+  } else if (g.duration->count() > 0) {
+    c.length = simulate::Length::Duration;
+    c.duration = parse_number("--duration", t.duration, Bound::NonNegative);
+  }
+  c.progress = parse_number("--progress", t.progress, Bound::NonNegative);
+  c.dt = c.dt_given ? parse_number("--dt", t.dt, Bound::Positive) : 1.0 / 30;
+  c.shrink = parse_number("--shrink", t.shrink, Bound::NonNegative);
+  c.iterations = int(parse_integer("--iterations", t.iterations, 1, 1000000));
+  c.tolerance = parse_number("--tolerance", t.tolerance, Bound::NonNegative);
+  c.penalty_weight = parse_number("--penalty-weight", t.penalty_weight, Bound::Positive);
+  c.contact_weight = parse_number("--contact-weight", t.contact_weight, Bound::NonNegative);
+  c.chebyshev_rho = parse_number("--chebyshev-rho", t.rho, Bound::UnitOpen);
+  c.chebyshev_gamma = parse_number("--chebyshev-gamma", t.gamma, Bound::UnitHalfOpenAbove);
+  c.chebyshev_delay = int(parse_integer("--chebyshev-delay", t.delay, 1, 1000000));
+  c.chebyshev_estimate =
+      int(parse_integer("--chebyshev-estimate-iterations", t.estimate, 4, 1000000));
+  c.anderson_window =
+      int(parse_integer("--anderson-window", t.window, 1, massspring::kMaxAndersonWindow));
+  c.threads = int(parse_integer("--threads", t.threads, 1, 256));
+  c.newton_iterations = int(parse_integer("--newton-iterations", t.newton_iterations, 1, 1000000));
+  c.newton_tolerance = parse_number("--newton-tolerance", t.newton_tolerance, Bound::NonNegative);
+  c.every = int(parse_integer("--every", t.every, 1, 100000000));
+  c.save_every = int(parse_integer("--save-every", t.save_every, 0, 100000000));
+  c.guard_growth = parse_number("--guard-growth", t.guard_growth, Bound::NonNegative);
+  c.force = simulate::parse_vector3("--force", t.force);
+  c.gravity = simulate::parse_vector3("--gravity", t.gravity);
+  if (g.self_collision->count() > 0)
+    c.self_collision = parse_number("--self-collision", t.self_collision, Bound::Positive);
+  if (c.scene.empty() == c.generate.empty())
+    throw Error("give either a scene file or --generate (see --help)");
+  if (c.save_every > 0 && c.save_state.empty())
+    throw Error("--save-every " + t.save_every + ": needs --save-state FILE");
+}
+
+// Runs the scene with the system type --storage and --precision name; the run's exit status.
+int run_with_storage(const Config& c) {
+  using massspring::Dense;
+  using massspring::MassSpringSystem;
+  using massspring::Sparse;
+  const bool dense = c.storage == "dense", single = c.precision == "float";
+  if (dense && single) return run_scene<MassSpringSystem<float, Dense>>(c);
+  if (dense) return run_scene<MassSpringSystem<double, Dense>>(c);
+  if (single) return run_scene<MassSpringSystem<float, Sparse>>(c);
+  return run_scene<MassSpringSystem<double, Sparse>>(c);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Config c;
+  OptionText text(c);
+  GivenOptions given;
+  CLI::App app{
+      "Simulate a mass-spring scene: local-global (Liu et al. 2013), forward, symplectic or "
+      "backward Euler. Exit status: 0 done, 1 invalid input or output, 2 diverged, 128+signal "
+      "interrupted (130 SIGINT, 143 SIGTERM)."};
+  app.get_formatter()->column_width(36);
+  app.footer(
+      "Outputs (--out, --csv, --html, --pc2, --vtk, --save-state): every one is checked before "
+      "the first step; the missing folders of its path are created once every check has passed; "
+      "an existing file is replaced only with --overwrite.");
+  // in the order --help lists them
+  add_scene_options(app, c);
+  add_run_options(app, c, text, given);
+  add_solver_options(app, c, text, given);
+  add_force_options(app, text, given);
+  add_output_options(app, c, text);
+  name_value_types(app);
+  if (const std::optional<int> status = parse_command_line(app, argc, argv)) return *status;
 
   try {
-    std::vector<std::string> lengths;
-    for (CLI::Option* o : {o_steps, o_frames, o_duration})
-      if (o->count() > 0) lengths.push_back(o->get_name());
-    if (lengths.size() > 1)
-      throw Error(lengths[0] + " and " + lengths[1] +
-                  ": give one of --steps, --frames and --duration");
-    c.dt_given = o_dt->count() > 0;
-    c.integrator_given = o_integrator->count() > 0;
-    c.gravity_given = o_gravity->count() > 0;
-    c.force_given = o_force->count() > 0;
-    c.rho_given = chebyshev.front()->count() > 0;
-    for (auto [list, names] :
-         {std::pair{&fms, &c.given_fast_mass_spring}, std::pair{&chebyshev, &c.given_chebyshev},
-          std::pair{&anderson, &c.given_anderson}, std::pair{&be, &c.given_backward_euler},
-          std::pair{&contact, &c.given_contact}})
-      for (CLI::Option* o : *list)
-        if (o->count() > 0) names->push_back(o->get_name());
-    using simulate::parse_integer;
-    using simulate::parse_number;
-    if (o_steps->count() > 0) {
-      c.length = simulate::Length::Steps;
-      c.steps = parse_integer("--steps", steps, 0, 100000000);
-    } else if (o_frames->count() > 0) {
-      c.length = simulate::Length::Frames;
-      c.frames = parse_integer("--frames", frames, 0, 100000000);
-    } else if (o_duration->count() > 0) {
-      c.length = simulate::Length::Duration;
-      c.duration = parse_number("--duration", duration, Bound::NonNegative);
-    }
-    c.progress = parse_number("--progress", progress, Bound::NonNegative);
-    c.dt = c.dt_given ? parse_number("--dt", dt, Bound::Positive) : 1.0 / 30;
-    c.shrink = parse_number("--shrink", shrink, Bound::NonNegative);
-    c.iterations = int(parse_integer("--iterations", iterations, 1, 1000000));
-    c.tolerance = parse_number("--tolerance", tolerance, Bound::NonNegative);
-    c.penalty_weight = parse_number("--penalty-weight", penalty_weight, Bound::Positive);
-    c.contact_weight = parse_number("--contact-weight", contact_weight, Bound::NonNegative);
-    c.chebyshev_rho = parse_number("--chebyshev-rho", rho, Bound::UnitOpen);
-    c.chebyshev_gamma = parse_number("--chebyshev-gamma", gamma, Bound::UnitHalfOpenAbove);
-    c.chebyshev_delay = int(parse_integer("--chebyshev-delay", delay, 1, 1000000));
-    c.chebyshev_estimate =
-        int(parse_integer("--chebyshev-estimate-iterations", estimate, 4, 1000000));
-    c.anderson_window =
-        int(parse_integer("--anderson-window", window, 1, massspring::kMaxAndersonWindow));
-    c.threads = int(parse_integer("--threads", threads, 1, 256));
-    c.newton_iterations = int(parse_integer("--newton-iterations", newton_iterations, 1, 1000000));
-    c.newton_tolerance = parse_number("--newton-tolerance", newton_tolerance, Bound::NonNegative);
-    c.every = int(parse_integer("--every", every, 1, 100000000));
-    c.save_every = int(parse_integer("--save-every", save_every, 0, 100000000));
-    c.guard_growth = parse_number("--guard-growth", guard_growth, Bound::NonNegative);
-    c.force = simulate::parse_vector3("--force", force);
-    c.gravity = simulate::parse_vector3("--gravity", gravity);
-    if (o_self_collision->count() > 0)
-      c.self_collision = parse_number("--self-collision", self_collision, Bound::Positive);
-    if (c.scene.empty() == c.generate.empty())
-      throw Error("give either a scene file or --generate (see --help)");
-    if (c.save_every > 0 && c.save_state.empty())
-      throw Error("--save-every " + save_every + ": needs --save-state FILE");
-
+    record_given(given, c);
+    read_values(text, given, c);
     simulate::install_interrupt_handlers();
-    using massspring::Dense;
-    using massspring::MassSpringSystem;
-    using massspring::Sparse;
-    const bool dense = c.storage == "dense", single = c.precision == "float";
-    if (dense && single) return run_scene<MassSpringSystem<float, Dense>>(c);
-    if (dense) return run_scene<MassSpringSystem<double, Dense>>(c);
-    if (single) return run_scene<MassSpringSystem<float, Sparse>>(c);
-    return run_scene<MassSpringSystem<double, Sparse>>(c);
+    return run_with_storage(c);
   } catch (const std::exception& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "massspring-simulate: %s\n", e.what());

@@ -274,10 +274,12 @@ TEST_CASE("J15 OBJ file with no vertices") {
 TEST_CASE("J16 no mass and no faces to take Voronoi masses from") {
   const JsonScene s(R"({"obj": "tri.obj", "b": [], "k": 10})", "v 0 0 0\nv 1 0 0\nf 1 2\n");
   CHECK(s.error() == s.name() + ": scene has no faces to take masses from: give a mass (\"m\")");
+  // vertex 4, on line 6 (after a comment), is on a spring only: named by its file, line and
+  // 1-based index
   const JsonScene lone(R"({"obj": "tri.obj", "b": [], "k": 10})",
-                       std::string(kTriangle) + "v 5 5 5\nf 3 4\n");
-  CHECK(lone.error() == lone.name() +
-                            ": point 3 (OBJ vertex 4): lies on no face of nonzero area, so its "
+                       std::string(kTriangle) + "# a tail\nv 5 5 5\nf 3 4\n");
+  CHECK(lone.error() == lone.name() + ": " + lone.obj.string() +
+                            ":6: vertex 4: lies on no face of nonzero area, so its "
                             "Voronoi mass is 0; give a mass (\"m\")");
 }
 
@@ -362,11 +364,15 @@ TEST_CASE("J21 a mesh collider's OBJ missing, not polygons, or degenerate") {
        " has 2-vertex faces or lines: a collider mesh takes polygons only"},
       {"v 0 0 0\n", " has no polygons: a collider mesh needs some"},
       {"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n",
-       ": polygon 1 (counting from 0: OBJ vertices 1, 2, 4) has a triangle of zero area"}};
+       ":6: face (1, 2, 4) has zero area"},
+      // a quad's second fan triangle (1, 2, 4) is flat; the file's line and 1-based indices
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n\n# flat\nf 1 3 2 4\n",
+       ":7: face (1, 3, 2, 4): fan triangle (1, 2, 4) has zero area"}};
   for (const auto& [obj, message] : cases) {
     const JsonScene s(head + R"("m.obj"}]})");
     const fs::path m = s.dir.write("m.obj", obj);
-    CHECK(s.error() == s.name() + ": colliders[0] (mesh): \"obj\": " + m.string() + message);
+    const std::string key = message[0] == ':' ? "" : "\"obj\": ";
+    CHECK(s.error() == s.name() + ": colliders[0] (mesh): " + key + m.string() + message);
   }
 }
 
@@ -393,12 +399,18 @@ TEST_CASE("J22 self_collision not an object, an unknown, repeated or bad field")
 }
 
 TEST_CASE("J23 a surface make_system cannot build") {
+  // the quad on line 6 (after a comment) has the flat fan triangle (1, 2, 3): the file's line and
+  // 1-based indices
   const JsonScene flat(R"({"obj": "tri.obj", "b": [], "k": 10, "m": 1})",
-                       "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3 4\n");
-  CHECK(
-      flat.error() ==
-      flat.name() +
-          ": face 0 (0, 1, 2, 3): surface triangle 0 = (0, 1, 2): zero area at the rest positions");
+                       "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\n# a quad\nf 1 2 3 4\n");
+  CHECK(flat.error() == flat.name() + ": " + flat.obj.string() +
+                            ":6: face (1, 2, 3, 4): fan triangle (1, 2, 3): zero area at the rest "
+                            "positions");
+  // a flat triangle face after a good one: named without "fan triangle"
+  const JsonScene second(R"({"obj": "tri.obj", "b": [], "k": 10, "m": 1})",
+                         std::string(kTriangle) + "v 2 0 0\nf 1 2 4\n");
+  CHECK(second.error() == second.name() + ": " + second.obj.string() +
+                              ":6: face (1, 2, 4): zero area at the rest positions");
   const JsonScene chain(R"({"obj": "tri.obj", "b": [], "k": 10, "m": 1, "self_collision": {}})",
                         "v 0 0 0\nv 1 0 0\nf 1 2\n");
   CHECK(chain.error() == chain.name() +

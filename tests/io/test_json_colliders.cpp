@@ -328,11 +328,14 @@ TEST_CASE("colliders: a mesh's OBJ is refused when missing, not polygons, or deg
     CHECK(what.substr(what.find(prefix)) ==
           prefix + "\"obj\": " + obj + " has no polygons: a collider mesh needs some");
   }
-  {
+  {  // the OBJ's line and 1-based indices
     const auto [what, obj] = error("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+    CHECK(what.substr(what.find(prefix)) == prefix + obj + ":6: face (1, 2, 4) has zero area");
+  }
+  {  // a polygon: its fan triangle (1, 2, 4) is the flat one
+    const auto [what, obj] = error("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 3 2 4\n");
     CHECK(what.substr(what.find(prefix)) ==
-          prefix + "\"obj\": " + obj +
-              ": polygon 1 (counting from 0: OBJ vertices 1, 2, 4) has a triangle of zero area");
+          prefix + obj + ":5: face (1, 3, 2, 4): fan triangle (1, 2, 4) has zero area");
   }
   {
     const auto [what, obj] = error("v 0 0 0\nv x 0 0\n");

@@ -154,13 +154,14 @@ TEST_CASE("load_scene puts the scene's path in front of make_system's errors") {
       load_scene<SparseSystem>(chain),
       massspring::test::contains(chain.string() + ": scene has no faces to take masses from"),
       Error);
-  // vertex 4 (index 3) lies on no face: its Voronoi mass would be 0
-  dir.write("loose.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nf 3 4\n");
+  // vertex 4 (index 3, line 4) lies on no face: its Voronoi mass would be 0
+  const auto loose_obj =
+      dir.write("loose.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nf 3 4\n");
   const auto loose = dir.write("loose.json", R"({"obj": "loose.obj", "b": [], "k": 1})");
-  CHECK_THROWS_WITH_AS(
-      load_scene<SparseSystem>(loose),
-      massspring::test::contains(loose.string() + ": point 3 (OBJ vertex 4): lies on no face"),
-      Error);
+  CHECK_THROWS_WITH_AS(load_scene<SparseSystem>(loose),
+                       massspring::test::contains(loose.string() + ": " + loose_obj.string() +
+                                                  ":4: vertex 4: lies on no face"),
+                       Error);
   // with "m" both load
   dir.write("loose_m.json", R"({"obj": "loose.obj", "b": [4], "k": 1, "m": 2})");
   const auto s = load_scene<SparseSystem>(dir / "loose_m.json");

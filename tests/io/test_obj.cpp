@@ -98,6 +98,25 @@ TEST_CASE("read_obj: negative indices count back from the last vertex defined ab
   CHECK(mesh.edges(0, 1) == 2);
 }
 
+TEST_CASE("read_obj: the line of each vertex and polygon, for messages that point into the file") {
+  TempDir dir;
+  // comments, a blank line, a spring and a polyline between them; CRLF on one line
+  const auto mesh = read_obj(dir.write("lines.obj",
+                                       "# header\n"          // 1
+                                       "v 0 0 0\n"           // 2: vertex 1
+                                       "\n"                  // 3
+                                       "v 1 0 0\r\n"         // 4: vertex 2
+                                       "v 0 1 0 1\n"         // 5: vertex 3
+                                       "f 1 2\n"             // 6: a spring, not a polygon
+                                       "f 1 2 3\n"           // 7: polygon 1
+                                       "l 1 2 3\n"           // 8
+                                       "v 1 1 0 # corner\n"  // 9: vertex 4
+                                       "f 2 4 3\n"));        // 10: polygon 2
+  CHECK(mesh.vertex_lines == std::vector<std::size_t>{2, 4, 5, 9});
+  CHECK(mesh.face_lines == std::vector<std::size_t>{7, 10});
+  CHECK(mesh.edges.rows() == 3);
+}
+
 TEST_CASE("read_obj: positive indices may refer to vertices defined further down") {
   TempDir dir;
   const auto mesh = read_obj(dir.write("forward.obj", "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"));

@@ -3,6 +3,7 @@
 // same state; what cannot be written or read is refused, naming the file.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <massspring/forces/gravitational_attraction.hpp>
 #include <massspring/forces/vortex.hpp>
@@ -13,6 +14,7 @@
 #include <massspring/scene/make_system.hpp>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "io/test_files.hpp"
 
@@ -209,6 +211,28 @@ TEST_CASE("state scene: a term it cannot hold is refused and nothing is written"
       Error);
   CHECK_FALSE(std::filesystem::exists(path));
   CHECK_FALSE(std::filesystem::exists(dir / "s.json.tmp"));
+}
+
+TEST_CASE("state scene: state_force_terms() names exactly the terms write_state holds") {
+  // a system with one term of every kind write_state() writes: their names, in the system's
+  // order, are the list; each is held, a user's term is not, and the phrase joins the list
+  using System = massspring::MassSpringSystem<double, massspring::Sparse>;
+  const System s = scrambled_cloth_all_terms<System>();
+  std::vector<std::string> names;
+  for (int k = 0; k < s.forces().size(); ++k) names.emplace_back(s.forces()[k].name);
+  std::vector<std::string> listed = massspring::io::state_force_terms();
+  CHECK(listed.size() == names.size());
+  for (const std::string& name : names) {
+    CAPTURE(name);
+    CHECK(std::count(listed.begin(), listed.end(), name) == 1);
+    CHECK(massspring::io::state_holds_force_term(name));
+  }
+  CHECK_FALSE(massspring::io::state_holds_force_term(UserTerm{}.name()));
+  CHECK_FALSE(massspring::io::state_holds_force_term(""));
+  CHECK(massspring::io::state_force_terms_text() ==
+        "gravity, constant force, linear drag, gravitational attraction and vortex force");
+  TempDir dir;
+  CHECK_NOTHROW(massspring::io::write_state(s, dir / "all.json"));
 }
 
 TEST_CASE("state scene: bad files are refused, naming the file") {

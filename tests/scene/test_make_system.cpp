@@ -87,7 +87,13 @@ TEST_CASE("make_system refuses a scene it cannot give masses to, or an invalid p
   auto loose = square_with_tail();  // point 4 is on the tail only
   loose.mass.reset();
   CHECK_THROWS_WITH_AS(make_system<SparseSystem>(loose),
-                       doctest::Contains("point 4 (OBJ vertex 5): lies on no face of nonzero area"),
+                       doctest::Contains("point 4: lies on no face of nonzero area"), Error);
+  // read from a file (MeshSource): named by the file, the vertex's line and its 1-based index
+  loose.source.file = "tail.obj";
+  loose.source.vertex_lines = {2, 3, 4, 5, 9};
+  CHECK_THROWS_WITH_AS(make_system<SparseSystem>(loose),
+                       "tail.obj:9: vertex 5: lies on no face of nonzero area, so its Voronoi mass "
+                       "is 0; give a mass (\"m\")",
                        Error);
 
   auto bad_pin = square_with_tail();
@@ -165,6 +171,22 @@ TEST_CASE("make_system refuses a face of zero area or with a repeated vertex, na
   auto second = square_with_tail();
   second.faces = {{0, 1, 2}, {2, 3, 4}};
   second.vertices.row(4) << -1, 1, 0;  // on the line through 2 and 3
+  CHECK_THROWS_WITH_AS(
+      make_system<SparseSystem>(second),
+      "face 1 (2, 3, 4): surface triangle 1 = (2, 3, 4): zero area at the rest positions", Error);
+
+  // read from a file (MeshSource): the face's line and the file's 1-based indices
+  collinear.source.file = "square.obj";
+  collinear.source.face_lines = {7};
+  CHECK_THROWS_WITH_AS(make_system<SparseSystem>(collinear),
+                       "square.obj:7: face (1, 2, 3, 4): fan triangle (1, 2, 3): zero area at the "
+                       "rest positions",
+                       Error);
+  second.source.file = "two.obj";
+  second.source.face_lines = {7, 8};
+  CHECK_THROWS_WITH_AS(make_system<SparseSystem>(second),
+                       "two.obj:8: face (3, 4, 5): zero area at the rest positions", Error);
+  second.source.face_lines = {7};  // lines that do not match the faces are not used
   CHECK_THROWS_WITH_AS(
       make_system<SparseSystem>(second),
       "face 1 (2, 3, 4): surface triangle 1 = (2, 3, 4): zero area at the rest positions", Error);

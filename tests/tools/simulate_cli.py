@@ -9,7 +9,8 @@ CASE is one of
              message (one line, prefixed "massspring-simulate: "), nothing on stdout (no run
              started), and the work folder byte for byte as it was (nothing written or removed);
              `--table` prints the table instead of checking it
-  help       --help exits 0 and shows a default for every option that takes a value
+  help       --help exits 0 and shows a default for every option that takes a value; --version
+             prints the project's version and exits 0
   overwrite  --overwrite replaces an existing CSV and the frames of an earlier run (never mixed)
   rename     the CSV's final rename fails (its name became a folder during the run): the .tmp is
              kept, whole, and the message names it; the header line arrives while the run goes on
@@ -25,6 +26,8 @@ CASE is one of
              in a short run at the default 10 s)
   hint       an explicit integrator that diverges is told the step stable_time_step() gives, and
              a run at that step (symplectic Euler) does not diverge
+  folders    every output (--out, --csv, --html, --pc2, --vtk, --save-state) creates the missing
+             folders of its path, alone and all at once; --help says so
   readme     every ```sh block of README.md that runs massspring-simulate, run as printed (in a
              copy of the scenes) twice: both exit 0, and everything written is under out/
   resume     --save-state after 10 frames then 10 more from the saved state give the CSV of 20
@@ -115,8 +118,12 @@ REFUSALS = [
     (["chain.json", "--csv", "t.csv"],
      "--csv t.csv: t.csv.tmp exists, left by an earlier run that did not finish (killed?); it "
      "may hold its output: move or delete it, or give --overwrite to replace it"),
-    (["chain.json", "--csv", "no/such/folder/x.csv"],
-     "--csv no/such/folder/x.csv: the folder no/such/folder does not exist"),
+    # a missing folder is created (the folders case); a file where a folder should be is refused
+    (["chain.json", "--csv", "file.txt/such/x.csv"],
+     "--csv file.txt/such/x.csv: file.txt is not a folder"),
+    # a refused run creates no folder for its other outputs
+    (["chain.json", "--csv", "new/x.csv", "--html", "existing.csv"],
+     "--html existing.csv: exists; give --overwrite to replace it, or choose another name"),
     (["chain.json", "--csv", "a.csv", "--save-state", "a.csv"],
      "--csv a.csv: another output of this run is a.csv; give each output its own file"),
     (["chain.json", "--out", "stale"],
@@ -126,8 +133,7 @@ REFUSALS = [
     (["chain.json", "--html", "existing.csv"],
      "--html existing.csv: exists; give --overwrite to replace it, or choose another name"),
     (["chain.json", "--html", "adir.json"], "--html adir.json: is a directory; give a file name"),
-    (["chain.json", "--html", "no/such/x.html"],
-     "--html no/such/x.html: the folder no/such does not exist"),
+    (["chain.json", "--html", "file.txt/x.html"], "--html file.txt/x.html: file.txt is not a folder"),
     (["chain.json", "--html", "chain.json"],
      "--html chain.json: is chain.json, a file this run reads; choose another name"),
     (["chain.json", "--html", "a.out", "--csv", "a.out"],
@@ -143,8 +149,11 @@ REFUSALS = [
     (["chain.json", "--pc2", "chain.pc2"],
      "--pc2 chain.pc2: its rest mesh chain.obj: is chain.obj, a file this run reads; choose "
      "another name"),
-    (["chain.json", "--pc2", "no/such/r.pc2"],
-     "--pc2 no/such/r.pc2: the folder no/such does not exist"),
+    (["chain.json", "--pc2", "file.txt/r.pc2"], "--pc2 file.txt/r.pc2: file.txt is not a folder"),
+    (["chain.json", "--out", "file.txt/f"], "--out file.txt/f: file.txt is not a folder"),
+    (["chain.json", "--vtk", "file.txt/v"], "--vtk file.txt/v: file.txt is not a folder"),
+    (["chain.json", "--save-state", "file.txt/s.json"],
+     "--save-state file.txt/s.json: file.txt is not a folder"),
     (["chain.json", "--vtk", "file.txt"], "--vtk file.txt: exists and is not a folder"),
     (["chain.json", "--vtk", "oldvtk"],
      "--vtk oldvtk: holds 2 files of an earlier run (frame_00000.vtu ... run.pvd); give "
@@ -208,13 +217,16 @@ REFUSALS = [
      "given elimination order (use Sparse storage)"),
     (["chain.json", "--bogus"], "The following argument was not expected: --bogus (see --help)"),
     (["chain.json", "--iteration", "5"],
-     "The following arguments were not expected: 5 --iteration (did you mean --iterations?) "
+     "The following arguments were not expected: --iteration 5 (did you mean --iterations?) "
      "(see --help)"),
     (["chain.json", "--integrater=rk4"],
      "The following argument was not expected: --integrater=rk4 (did you mean --integrator?) "
      "(see --help)"),
     (["chain.json", "--dtt", "0.1"],
-     "The following arguments were not expected: 0.1 --dtt (did you mean --dt?) (see --help)"),
+     "The following arguments were not expected: --dtt 0.1 (did you mean --dt?) (see --help)"),
+    # listed in the order given
+    (["chain.json", "a", "b", "--bogus", "c"],
+     "The following arguments were not expected: a b --bogus c (see --help)"),
     (["chain.json", "--self"],
      "The following argument was not expected: --self (did you mean --self-collision?) "
      "(see --help)"),
@@ -291,11 +303,12 @@ def refusals(simulate, source, work, table):
         print(f"OK: {len(REFUSALS)} refusals, each exit 1 with its message, nothing written")
 
 
-def help_text(simulate, work):
+def help_text(simulate, source, work):
     result = run(simulate, ["--help"], work)
+    help_text_out = result.stdout
     check(result.returncode == 0, f"--help: exit {result.returncode}")
     check(result.stderr == "", f"--help: stderr {result.stderr!r}")
-    flags = {"--help", "--overwrite", "--quiet"}
+    flags = {"--help", "--overwrite", "--quiet", "--version"}
     options = 0
     for line in result.stdout.splitlines():
         words = line.split()
@@ -313,7 +326,19 @@ def help_text(simulate, work):
                  "--newton-tolerance", "--line-search", "--save-state", "--save-every",
                  "--overwrite", "--self-collision"):
         check(name in result.stdout, f"--help does not list {name}")
-    print(f"OK: --help exits 0, {options} options each with a default")
+    # --version: the project's version (CMake's project(VERSION), read from version.hpp), exit 0
+    with open(os.path.join(source, "include", "massspring", "version.hpp")) as handle:
+        parts = dict(re.findall(r"^#define MASSSPRING_VERSION_(MAJOR|MINOR|PATCH) (\d+)$",
+                                handle.read(), re.M))
+    expected = f"massspring-simulate {parts['MAJOR']}.{parts['MINOR']}.{parts['PATCH']}\n"
+    for args in (["--version"], ["--generate", "chain", "--version"]):
+        result = run(simulate, args, work)
+        check(result.returncode == 0 and result.stdout == expected and result.stderr == "",
+              f"{args}: exit {result.returncode}, {result.stdout!r} {result.stderr!r}, expected "
+              f"{expected!r}")
+    check("--version" in help_text_out, "--help does not list --version")
+    print(f"OK: --help exits 0, {options} options each with a default; --version prints "
+          f"{expected.strip()!r}")
 
 
 def rows(path):
@@ -460,14 +485,20 @@ def length(simulate, source, work):
         check(result.returncode == 0, f"{args}: exit {result.returncode} {result.stderr}")
         return result
 
-    # --duration: 1 s at dt 0.01 is 100 steps; 0.105 s is 11 (rounded up); 0.3 s at 0.1 is 3
-    # (0.3 / 0.1 = 2.9999999999999996: within rounding of a whole number)
-    for duration, dt, steps in (("1", "0.01", 100), ("0.105", "0.01", 11), ("0.3", "0.1", 3)):
+    # --duration D: the whole number of steps nearest D / dt, at least one, so that the run ends
+    # within dt / 2 of D: 1 s at dt 0.01 is 100 steps; 0.104 s is 10 and 0.106 s is 11; 0.3 s at
+    # 0.1 is 3 (0.3 / 0.1 = 2.9999999999999996); 1.5 s at 0.0333333 (the README's drape) is 45,
+    # not 46 (1.5333 s); 0.001 s at 0.01 is one step
+    for duration, dt, steps in (("1", "0.01", 100), ("0.104", "0.01", 10), ("0.106", "0.01", 11),
+                                ("0.3", "0.1", 3), ("1.5", "0.0333333", 45),
+                                ("0.001", "0.01", 1)):
         result = ok(["chain.json", "--duration", duration, "--dt", dt, "--csv", "d.csv",
                      "--overwrite"])
         check(csv_frames(os.path.join(work, "d.csv")) == list(range(steps + 1)),
               f"--duration {duration} --dt {dt}: frames {csv_frames(os.path.join(work, 'd.csv'))}")
         check(f"{steps} steps" in result.stdout.splitlines()[0], f"header {result.stdout!r}")
+        check(steps == 1 or abs(steps * float(dt) - float(duration)) <= float(dt) / 2,
+              f"--duration {duration} --dt {dt}: {steps} steps end at {steps * float(dt)} s")
     # --frames counts written frames: 5 after the first, every 3rd step: 15 steps
     ok(["chain.json", "--frames", "5", "--every", "3", "--out", "f"])
     names = sorted(os.listdir(os.path.join(work, "f")))
@@ -559,11 +590,43 @@ def hint(simulate, source, work):
     print(f"OK: the hint's step {step} s runs symplectic Euler 2000 steps without diverging")
 
 
+def folders(simulate, source, work):
+    """Every output creates the missing folders of its path: one rule for all of them."""
+    prepare(source, work)
+    outputs = {"--out": "new/out/frames", "--csv": "new/csv/t.csv", "--html": "new/html/p.html",
+               "--pc2": "new/pc2/c.pc2", "--vtk": "new/vtk/series",
+               "--save-state": "new/state/s.json"}
+    written = {"--out": "new/out/frames/frame_00003.obj", "--pc2": "new/pc2/c.obj",
+               "--vtk": "new/vtk/series/run.pvd"}
+    for option, path in outputs.items():
+        result = run(simulate, ["chain.json", "--steps", "3", option, path], work)
+        check(result.returncode == 0, f"{option} {path}: exit {result.returncode} {result.stderr}")
+        for f in (path, written.get(option, path)):
+            check(os.path.exists(os.path.join(work, f)), f"{option} {path}: {f} not written")
+    # all at once, two levels deep
+    args = ["chain.json", "--steps", "3"]
+    for option, path in outputs.items():
+        args += [option, "all/x/" + path]
+    result = run(simulate, args, work)
+    check(result.returncode == 0, f"{args}: exit {result.returncode} {result.stderr}")
+    for option, path in outputs.items():
+        check(os.path.exists(os.path.join(work, "all/x/" + written.get(option, path))),
+              f"all at once: {option} not written")
+    help_out = run(simulate, ["--help"], work).stdout
+    check("missing folders" in " ".join(help_out.split()), "--help does not state the rule")
+    print(f"OK: {len(outputs)} outputs each create the missing folders of their path")
+
+
 def readme(simulate, source, work):
     """The README's massspring-simulate commands, as printed, twice, in a copy of the scenes."""
     shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(os.path.join(work, "build", "tools"))
-    os.symlink(simulate, os.path.join(work, "build", "tools", "massspring-simulate"))
+    # the binary where the README's commands name it (the path scripts/demo.sh builds:
+    # tests/scripts/readme_commands.py)
+    with open(os.path.join(source, "README.md")) as handle:
+        named = re.search(r"^(\S+/massspring-simulate) ", handle.read(), re.M)
+    check(named is not None, "no README line starts with a path to massspring-simulate")
+    os.makedirs(os.path.dirname(os.path.join(work, named.group(1))))
+    os.symlink(simulate, os.path.join(work, named.group(1)))
     for folder in ("scenes", "scenes_xml"):
         shutil.copytree(os.path.join(source, "examples", folder),
                         os.path.join(work, "examples", folder))
@@ -724,7 +787,7 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     cases = {"refusals": lambda: refusals(simulate, source, work, table),
-             "help": lambda: help_text(simulate, work),
+             "help": lambda: help_text(simulate, source, work),
              "overwrite": lambda: overwrite(simulate, source, work),
              "rename": lambda: rename(simulate, source, work),
              "killed": lambda: killed(simulate, source, work),
@@ -733,6 +796,7 @@ def main():
              "progress": lambda: progress(simulate, source, work),
              "hint": lambda: hint(simulate, source, work),
              "readme": lambda: readme(simulate, source, work),
+             "folders": lambda: folders(simulate, source, work),
              "resume": lambda: resume(simulate, source, work)}
     if case not in cases:
         fail(f"unknown case {case}")

@@ -30,7 +30,7 @@ struct Config {
   Length length = Length::Default;
   long long steps = 300;  // --steps: steps to take
   long long frames = 0;   // --frames: frames written after the first; steps = frames x every
-  double duration = 0;    // --duration [s]: steps = duration / dt, rounded up
+  double duration = 0;    // --duration [s]: the whole number of steps nearest duration / dt
   double progress = 10;   // --progress [s]: wall-clock seconds between progress lines; 0: none
   double dt = 1.0 / 30;
   bool dt_given = false;

@@ -94,14 +94,8 @@ inline void check_exports(const Config& c, const std::vector<fs::path>& inputs) 
     const auto status = fs::status(folder, ec);
     if (fs::exists(status) && !fs::is_directory(status))
       throw Error(option + ": exists and is not a folder");
-    if (!fs::exists(status)) {
-      fs::path existing = fs::absolute(folder).parent_path();
-      while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.root_path())
-        existing = existing.parent_path();
-      check_writable_folder("--vtk", folder, existing);
-      return;
-    }
-    check_writable_folder("--vtk", folder, folder);
+    check_output_parent("--vtk", folder, folder);
+    if (!fs::exists(status)) return;
     const std::vector<fs::path> old = vtk_files(folder);
     if (!old.empty() && !c.overwrite)
       throw Error(option + ": holds " + std::to_string(old.size()) + " files of an earlier run (" +
@@ -133,7 +127,7 @@ class Exports {
           if (ec)
             throw Error("--vtk " + c.vtk + ": cannot delete " + old.string() + ": " + ec.message());
         }
-      fs::create_directories(folder);
+      create_folders("--vtk", folder, folder);
       vtk_.springs = s.system.springs();
       vtk_.faces = s.faces;
       vtk_.pinned = s.system.pinned();

@@ -1,8 +1,11 @@
 #pragma once
 // massspring-simulate's output files: checked before the first step, written so that nothing is
 // lost. The rules (docs/errors.md, "massspring-simulate"):
-// - every target is checked before anything is written: its folder exists and is writable, it is
-//   not a directory, not a file the run reads (the scene, its OBJ), not another target;
+// - every target is checked before anything is written: it is not a directory, not a file the
+//   run reads (the scene, its OBJ), not another target; its folder is writable, or, when the
+//   folder is missing, the nearest folder above it that exists is writable, and the missing
+//   folders are created once every check has passed (the same for every output: --out, --csv,
+//   --html, --pc2, --vtk, --save-state);
 // - a file that exists is never replaced unless --overwrite; a `<file>.tmp` left by a killed run is
 //   named and refused unless --overwrite;
 // - an --out folder holding frame_NNNNN.obj files of an earlier run is refused, or (--overwrite)
@@ -64,6 +67,34 @@ inline void check_writable_folder(const std::string& option, const fs::path& tar
                 ": " + std::strerror(errno));
 }
 
+/// `folder` when it exists, else the nearest folder above it that exists (or whatever exists
+/// there: a file stops the walk), "." above a relative path's first component.
+inline fs::path nearest_existing(const fs::path& folder) {
+  std::error_code ec;
+  fs::path at = folder;
+  while (!at.empty() && !fs::exists(fs::status(at, ec)) && at != at.root_path())
+    at = at.parent_path();
+  return at.empty() ? fs::path(".") : at;
+}
+
+/// Refuses a folder an output cannot be written in: the folder itself when it exists, else the
+/// nearest existing folder above it (the missing ones are created after every check passed) must
+/// be a folder and writable.
+inline void check_output_parent(const std::string& option, const fs::path& target,
+                                const fs::path& folder) {
+  check_writable_folder(option, target, nearest_existing(folder));
+}
+
+/// Creates the missing folders of an output's folder (after every check passed).
+inline void create_folders(const std::string& option, const fs::path& target,
+                           const fs::path& folder) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec)
+    throw Error(option + " " + target.string() + ": cannot create the folder " + folder.string() +
+                ": " + ec.message());
+}
+
 /// One output file (--csv, --save-state): checked, never written here.
 /// @param inputs  every file the run reads
 /// @param others  the other output files (must differ)
@@ -92,7 +123,7 @@ inline void check_output_file(const std::string& option, const fs::path& file,
     throw Error(option + " " + file.string() + ": " + tmp.string() +
                 " exists, left by an earlier run that did not finish (killed?); it may hold "
                 "its output: move or delete it, or give --overwrite to replace it");
-  check_writable_folder(option, file, folder_of(file));
+  check_output_parent(option, file, folder_of(file));
 }
 
 /// The frame files in `folder` (sorted), "" when it does not exist.
@@ -106,9 +137,9 @@ inline std::vector<fs::path> frame_files(const fs::path& folder) {
   return out;
 }
 
-/// --out: a folder that does not exist (its nearest existing ancestor writable), or a folder
-/// without frame files, or (--overwrite) one whose frame files will be deleted; never one that
-/// holds a file the run reads under a frame file's name.
+/// --out: a folder that does not exist (its nearest existing ancestor a writable folder), or a
+/// folder without frame files, or (--overwrite) one whose frame files will be deleted; never one
+/// that holds a file the run reads under a frame file's name.
 inline void check_output_folder(const fs::path& folder, const std::vector<fs::path>& inputs,
                                 const std::vector<fs::path>& files, bool overwrite) {
   if (folder.empty()) return;
@@ -120,14 +151,8 @@ inline void check_output_folder(const fs::path& folder, const std::vector<fs::pa
       throw Error(option + " " + folder.string() + ": is also the file of another output");
   if (fs::exists(status) && !fs::is_directory(status))
     throw Error(option + " " + folder.string() + ": exists and is not a folder");
-  if (!fs::exists(status)) {
-    fs::path existing = fs::absolute(folder).parent_path();
-    while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.root_path())
-      existing = existing.parent_path();
-    check_writable_folder(option, folder, existing);
-    return;
-  }
-  check_writable_folder(option, folder, folder);
+  check_output_parent(option, folder, folder);
+  if (!fs::exists(status)) return;
   const std::vector<fs::path> frames = frame_files(folder);
   for (const fs::path& frame : frames)
     for (const fs::path& input : inputs)

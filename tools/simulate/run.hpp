@@ -56,6 +56,16 @@ inline double percentile(std::vector<double> v, double p) {
   return v[lo] + (at - double(lo)) * (v[hi] - v[lo]);
 }
 
+// The steps --duration asks for: the whole number of steps of h [s] nearest `time` [s] >= 0 (a
+// half rounded up), at least one when time > 0, so that the run ends within h / 2 of `time`
+// (1.5 s at h = 0.0333333 s: 45 steps, 1.4999985 s); saturates at the largest long long.
+inline long long steps_for_duration(double time, double h) {
+  const double q = time / h;
+  if (!(q < 9.2e18)) return std::numeric_limits<long long>::max();
+  const auto nearest = static_cast<long long>(std::floor(q + 0.5));
+  return time > 0 ? std::max(1LL, nearest) : nearest;
+}
+
 // What the run resolved from the scene and the options.
 struct Plan {
   double dt = 0;
@@ -134,7 +144,7 @@ Plan resolve(const Config& c, const Setup<System>& s) {
           "--frames " + std::to_string(c.frames) + " x --every " + std::to_string(c.every) + " =";
       break;
     case Length::Duration:
-      steps = massspring::io::FosssimScene::steps_of(c.duration, p.dt);
+      steps = steps_for_duration(c.duration, p.dt);
       length = "--duration " + massspring::detail::message(c.duration) + " s / dt " +
                massspring::detail::message(p.dt) + " s =";
       break;
@@ -288,8 +298,13 @@ class RunFiles {
       : c_(c), s_(s), out_(c.out), last_frame_(p.first_frame + p.steps) {
     if (!c.out.empty()) {
       if (c.overwrite) clear_frames(out_);
-      fs::create_directories(out_);
+      create_folders("--out", out_, out_);
     }
+    // every output file's missing folders (checked writable above them)
+    for (const auto& [option, file] :
+         {std::pair{"--csv", c.csv}, std::pair{"--html", c.html}, std::pair{"--pc2", c.pc2},
+          std::pair{"--save-state", c.save_state}})
+      if (!file.empty()) create_folders(option, file, folder_of(file));
     if (!c.csv.empty()) csv_.emplace(c.csv);
     if (!c.html.empty() || !c.pc2.empty() || !c.vtk.empty())
       exports_.emplace(c, s, p.dt, p.first_frame);
@@ -619,11 +634,10 @@ int run(const Config& c, Setup<System>& s) {
   if (!c.save_state.empty())
     for (int k = 0; k < system.forces().size(); ++k) {
       const std::string term = system.forces()[k].name;
-      if (term != "gravity" && term != "constant force" && term != "linear drag" &&
-          term != "gravitational attraction" && term != "vortex force")
+      if (!massspring::io::state_holds_force_term(term))
         throw Error("--save-state " + c.save_state + ": " + s.name + " has a " + term +
                     " term, which a state file cannot hold (it holds " +
-                    massspring::io::detail::kStateForceTerms + ")");
+                    massspring::io::state_force_terms_text() + ")");
     }
 
   Plan plan = p;

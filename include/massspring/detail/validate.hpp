@@ -123,28 +123,35 @@ inline void require_number(const char* where, const char* what, double x, bool s
         message(where, ": ", what, " must be finite and ", strict ? "> 0" : ">= 0", ", got ", x));
 }
 
-/// @brief Checks surface triangles (#triangles by 3 point indices) against the rest positions
-/// (#points by 3): Error naming the triangle for an index out of range, a point repeated in a
-/// triangle, or a triangle of zero area (relative to its longest side: collinear or coincident
-/// corners).
+/// @brief What is wrong with the surface triangle (a, b, c) of points with these rest positions
+/// (#points by 3), or an empty string when nothing is: "point index p out of range [0, n)",
+/// "repeats a point", or "zero area at the rest positions" (relative to its longest side:
+/// collinear or coincident corners).
 template <class Scalar>
-void require_surface(const Triangles& triangles, const Points<Scalar>& rest_positions) {
+std::string surface_triangle_problem(int a, int b, int c, const Points<Scalar>& rest_positions) {
   using V3 = Vector3<Scalar>;
   const int n = int(rest_positions.rows());
+  for (const int p : {a, b, c})
+    if (p < 0 || p >= n) return message("point index ", p, " out of range [0, ", n, ")");
+  if (a == b || b == c || a == c) return "repeats a point";
+  const V3 u = (rest_positions.row(b) - rest_positions.row(a)).transpose();
+  const V3 w = (rest_positions.row(c) - rest_positions.row(a)).transpose();
+  const Scalar longest = std::max({u.squaredNorm(), w.squaredNorm(), (w - u).squaredNorm()});
+  if (!(u.cross(w).norm() > Scalar(64) * std::numeric_limits<Scalar>::epsilon() * longest))
+    return "zero area at the rest positions";
+  return {};
+}
+
+/// @brief Checks surface triangles (#triangles by 3 point indices) against the rest positions
+/// (#points by 3): Error "surface triangle t = (a, b, c): <what>" (0-based) for the first
+/// triangle surface_triangle_problem() finds wrong.
+template <class Scalar>
+void require_surface(const Triangles& triangles, const Points<Scalar>& rest_positions) {
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
     const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
-    const auto name = [&] {
-      return message("surface triangle ", t, " = (", a, ", ", b, ", ", c, ")");
-    };
-    for (const int p : {a, b, c})
-      if (p < 0 || p >= n)
-        throw Error(message(name(), ": point index ", p, " out of range [0, ", n, ")"));
-    if (a == b || b == c || a == c) throw Error(message(name(), ": repeats a point"));
-    const V3 u = (rest_positions.row(b) - rest_positions.row(a)).transpose();
-    const V3 w = (rest_positions.row(c) - rest_positions.row(a)).transpose();
-    const Scalar longest = std::max({u.squaredNorm(), w.squaredNorm(), (w - u).squaredNorm()});
-    if (!(u.cross(w).norm() > Scalar(64) * std::numeric_limits<Scalar>::epsilon() * longest))
-      throw Error(message(name(), ": zero area at the rest positions"));
+    const std::string problem = surface_triangle_problem(a, b, c, rest_positions);
+    if (!problem.empty())
+      throw Error(message("surface triangle ", t, " = (", a, ", ", b, ", ", c, "): ", problem));
   }
 }
 

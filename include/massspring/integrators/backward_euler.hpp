@@ -284,8 +284,7 @@ class BackwardEuler {
     for (int i : system.pinned()) r.row(i).setZero();
     if (contact_ && with_contact)
       for (Eigen::Index i = 0; i < x.rows(); ++i)
-        if (touches_[std::size_t(i)])
-          r.row(i) += weight_of(system, i) * (target_.row(i) - x.row(i));
+        if (touches_[std::size_t(i)]) r.row(i) += weight_(i) * (target_.row(i) - x.row(i));
   }
 
   /// @brief dx = (A + W)^-1 rhs with A at (x, moved), W the contact term's weights on the points
@@ -294,14 +293,14 @@ class BackwardEuler {
              PointsType& rhs) {
     v_ = system.velocities() + moved / dt_;
     assembly_.assemble(system, x, v_, dt_, false);
-    add_contact_weights(system);
+    add_contact_weights();
     // Newton: a failed Cholesky means A is indefinite; its definite projection is cheaper and
     // descends, where a pivoting fallback would give a direction that may not.
     const bool projectable = newton && symmetric_;
     bool ok = solver_.factorize(assembly_.matrix(), symmetric_, !projectable);
     if (projectable && !ok) {
       assembly_.assemble(system, x, v_, dt_, true);
-      add_contact_weights(system);
+      add_contact_weights();
       ok = solver_.factorize(assembly_.matrix(), symmetric_);
     }
     if (!ok) return false;
@@ -316,15 +315,11 @@ class BackwardEuler {
     if (!contact_) return solve(system, false, x_, moved_, r_);
     rhs_ = r_;
     for (Eigen::Index i = 0; i < x_.rows(); ++i)
-      if (touches_[std::size_t(i)])
-        rhs_.row(i) += weight_of(system, i) * (target_.row(i) - start_.row(i));
+      if (touches_[std::size_t(i)]) rhs_.row(i) += weight_(i) * (target_.row(i) - start_.row(i));
     if (!solve(system, false, start_, start_moved_, rhs_)) return false;
     Flat(dx_.data(), dx_.size()) += Flat(start_.data(), dx_.size()) - Flat(x_.data(), dx_.size());
     return true;
   }
-
-  /// @brief The contact term's weight of point i [kg] this step.
-  Scalar weight_of(const System&, Eigen::Index i) const { return weight_(i); }
 
   /// @brief This step's weights (detail::contact_weights) into weight_. The scaled duals
   /// u = lambda / w are rescaled where a weight changed, so the forces lambda carry over.
@@ -338,10 +333,10 @@ class BackwardEuler {
   }
 
   /// @brief W on A's diagonal: w_i on the three rows of each point that touches.
-  void add_contact_weights(const System& system) {
+  void add_contact_weights() {
     if (!contact_) return;
     for (std::size_t i = 0; i < touches_.size(); ++i)
-      if (touches_[i]) assembly_.add_to_diagonal(int(i), weight_of(system, Eigen::Index(i)));
+      if (touches_[i]) assembly_.add_to_diagonal(int(i), weight_(Eigen::Index(i)));
   }
 
   /// @brief The contact term's local step at x_ for every point not pinned
@@ -375,12 +370,11 @@ class BackwardEuler {
 
   /// @brief The contact term's part of the incremental potential at x,
   /// sum_i w_i / (2 h^2) |x_i - target_i|^2 over the points that touch [J].
-  Scalar contact_energy(const System& system, const PointsType& x) const {
+  Scalar contact_energy(const PointsType& x) const {
     Scalar e = 0;
     if (!contact_) return e;
     for (Eigen::Index i = 0; i < x.rows(); ++i)
-      if (touches_[std::size_t(i)])
-        e += weight_of(system, i) * (x.row(i) - target_.row(i)).squaredNorm();
+      if (touches_[std::size_t(i)]) e += weight_(i) * (x.row(i) - target_.row(i)).squaredNorm();
     return e / (2 * dt_ * dt_);
   }
 
@@ -399,8 +393,8 @@ class BackwardEuler {
   Scalar line_search(const System& system, bool has_potential) {
     const Flat r(r_.data(), dx_.size());
     const Scalar slope = r.dot(dx_);  // -h^2 times the directional derivative of the objective
-    const Scalar f0 = has_potential ? objective(system, x_, moved_) + contact_energy(system, x_)
-                                    : r.squaredNorm();
+    const Scalar f0 =
+        has_potential ? objective(system, x_, moved_) + contact_energy(x_) : r.squaredNorm();
     Scalar alpha = 1;
     for (int k = 0; k < 40; ++k, alpha /= 2) {
       trial_ = x_;
@@ -409,7 +403,7 @@ class BackwardEuler {
       Flat(trial_moved_.data(), dx_.size()) += alpha * dx_;
       Scalar f1;
       if (has_potential) {
-        f1 = objective(system, trial_, trial_moved_) + contact_energy(system, trial_);
+        f1 = objective(system, trial_, trial_moved_) + contact_energy(trial_);
         if (f1 <= f0 - Scalar(1e-4) * alpha * slope / (dt_ * dt_)) return alpha;
         // Near the solution the objective's rounding (~eps |E|) hides the decrease: accept a
         // full step whose change is within that rounding.

@@ -53,6 +53,23 @@ inline bool is_collider_key(contact::ColliderShape shape, const std::string& key
   return keys.find(", " + key + ",") != std::string::npos;
 }
 
+/// @brief The message for polygon f of an OBJ collider mesh whose fan triangle (a, b, c) (0-based)
+/// has zero area: `<obj>:<line>: face (1, 2, 3, 4): fan triangle (1, 3, 4) has zero area`, in
+/// the file's 1-based indices (a triangle face says `face (1, 2, 3) has zero area`); without the
+/// polygon's line (a mesh not read by read_obj()), `<obj>: face ...`.
+template <class Scalar>
+std::string zero_area_face(const std::string& obj, const ObjMesh<Scalar>& mesh, std::size_t f,
+                           int a, int b, int c) {
+  const std::vector<int>& face = mesh.faces[f];
+  std::string out = obj;
+  if (mesh.face_lines.size() == mesh.faces.size()) out += message(':', mesh.face_lines[f]);
+  out += ": face (";
+  for (std::size_t v = 0; v < face.size(); ++v) out += message(v ? ", " : "", face[v] + 1);
+  out += ')';
+  if (face.size() > 3) out += message(": fan triangle (", a + 1, ", ", b + 1, ", ", c + 1, ')');
+  return out + " has zero area";
+}
+
 /// @brief Reads the value of the key "colliders" of a JSON+OBJ scene: a list of collider objects
 /// (docs/scenes.md), checked strictly; nothing is built but a trial collider per entry.
 /// @param[in] list      the key's value
@@ -194,11 +211,7 @@ std::vector<ColliderDescription<Scalar>> parse_json_colliders(const nlohmann::js
             const Scalar edge2 =
                 std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
             if (!(e1.cross(e2).norm() > std::numeric_limits<Scalar>::epsilon() * edge2))
-              throw fail("\"obj\": ", path.string(), ": polygon ", f,
-                         " (counting from 0: OBJ "
-                         "vertices ",
-                         face[0] + 1, ", ", face[k] + 1, ", ", face[k + 1] + 1,
-                         ") has a triangle of zero area");
+              throw fail(zero_area_face(path.string(), *mesh, f, face[0], face[k], face[k + 1]));
           }
         }
         d.vertices = std::move(mesh->vertices);

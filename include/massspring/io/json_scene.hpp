@@ -33,9 +33,211 @@ std::string json_number(Scalar x) {
   return out;
 }
 
+/// @brief The Error `<json>: <parts...>` of the JSON+OBJ reader, `name` the JSON file.
+template <class... Parts>
+Error json_scene_error(const std::string& name, const Parts&... parts) {
+  return Error(message(name, ": ", parts...));
+}
+
+/// @brief The JSON text parsed, refusing a key repeated at the top level, in "self_collision",
+/// or in an object of "colliders" (nlohmann keeps the last silently).
+/// @throws Error naming the key (and the collider's entry), or `not valid JSON: ` with nlohmann's
+/// message (its line and column) for text that is not JSON.
+inline nlohmann::json parse_json_scene_text(const std::string& text, const std::string& name) {
+  using Json = nlohmann::json;
+  std::set<std::string> seen, self_collision_keys;
+  // Inside "colliders": the entry being read and the keys of each object open in it.
+  std::string root_key;
+  long long entry = -1;
+  std::vector<std::set<std::string>> open;
+  try {
+    return Json::parse(text, [&](int depth, Json::parse_event_t event, Json& parsed) {
+      using Event = Json::parse_event_t;
+      if (depth == 1 && event == Event::key) {
+        const std::string& key = parsed.get_ref<const std::string&>();
+        if (!seen.insert(key).second)
+          throw json_scene_error(name, "key \"", key, "\" appears twice");
+        root_key = key;
+      } else if (depth == 2 && root_key == "self_collision" && event == Event::key) {
+        const std::string& key = parsed.get_ref<const std::string&>();
+        if (!self_collision_keys.insert(key).second)
+          throw json_scene_error(name, "key \"self_collision\": key \"", key, "\" appears twice");
+      } else if (depth >= 2 && root_key == "colliders") {
+        if (depth == 2 &&
+            (event == Event::object_start || event == Event::array_start || event == Event::value))
+          ++entry;  // the next element of the list
+        if (event == Event::object_start) {
+          open.emplace_back();
+        } else if (event == Event::object_end && !open.empty()) {
+          open.pop_back();
+        } else if (event == Event::key && !open.empty() &&
+                   !open.back().insert(parsed.get_ref<const std::string&>()).second) {
+          throw json_scene_error(name, "colliders[", entry, "]: key \"",
+                                 parsed.get_ref<const std::string&>(), "\" appears twice");
+        }
+      }
+      return true;
+    });
+  } catch (const Json::exception& e) {
+    std::string what = e.what();
+    if (const auto close = what.find("] ");
+        what.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
+      what = what.substr(close + 2);
+    throw json_scene_error(name, "not valid JSON: ", what);
+  }
+}
+
+/// @brief Checks the root of a JSON+OBJ scene: an object, not a state scene, without "bc", with
+/// no key but obj, b, k, m, png, colliders, self_collision, gravity and dt.
+/// @throws Error naming what it found instead.
+inline void check_json_scene_keys(const nlohmann::json& root, const std::string& name) {
+  if (!root.is_object())
+    throw json_scene_error(name,
+                           "expected a JSON object {\"obj\": ..., \"b\": [...], \"k\": ...}, got ",
+                           root.type_name());
+  if (root.contains("massspring_state"))
+    throw json_scene_error(
+        name,
+        "a state scene (written by io::write_state), not a JSON+OBJ scene: load it with "
+        "io::load_scene or io::read_state");
+  for (const auto& item : root.items()) {
+    const std::string& key = item.key();
+    if (key == "bc")
+      throw json_scene_error(name,
+                             "key \"bc\" (pinned positions) is not supported: pinned vertices stay "
+                             "at their rest positions");
+    if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png" &&
+        key != "colliders" && key != "self_collision" && key != "gravity" && key != "dt")
+      throw json_scene_error(
+          name, "unknown key \"", key,
+          "\" (expected obj, b, k, m, png, colliders, self_collision, gravity, dt)");
+  }
+}
+
+/// @brief The value of a key the scene must have.
+/// @throws Error `missing key` naming it.
+inline const nlohmann::json& json_scene_require(const nlohmann::json& root, const char* key,
+                                                const std::string& name) {
+  const auto it = root.find(key);
+  if (it == root.end()) throw json_scene_error(name, "missing key \"", key, "\"");
+  return *it;
+}
+
+/// @brief The number `value` of `key` as a Scalar, finite (in Scalar) and > 0 (`strict`) or >= 0.
+/// @throws Error naming the key and the value.
+template <class Scalar>
+Scalar json_scene_number(const char* key, const nlohmann::json& value, bool strict,
+                         const std::string& name) {
+  if (!value.is_number())
+    throw json_scene_error(name, "key \"", key, "\": expected a number ", strict ? "> 0" : ">= 0",
+                           ", got ", describe_json(value));
+  const double x = value.get<double>();
+  const Scalar s = static_cast<Scalar>(x);
+  if (!std::isfinite(s) || (strict ? !(s > 0) : !(s >= 0)))
+    throw json_scene_error(
+        name, "key \"", key, "\": expected a finite number ", strict ? "> 0" : ">= 0",
+        (std::isfinite(s) ? "" : " (in this Scalar type)"), ", got ", value.dump());
+  return s;
+}
+
+/// @brief "obj": the OBJ file's path, the name given taken relative to the JSON file's folder.
+/// @throws Error for a missing key or a value that is not a non-empty string.
+inline std::filesystem::path json_scene_obj_path(const nlohmann::json& root,
+                                                 const std::filesystem::path& json,
+                                                 const std::string& name) {
+  const nlohmann::json& obj = json_scene_require(root, "obj", name);
+  if (!obj.is_string() || obj.get_ref<const std::string&>().empty())
+    throw json_scene_error(name, "key \"obj\": expected the name of an OBJ file (a string), got ",
+                           describe_json(obj));
+  return json.parent_path() / std::filesystem::path(obj.get_ref<const std::string&>());
+}
+
+/// @brief "b": the list of pins, an array of integers (their range is checked by
+/// json_scene_pins() once the OBJ's vertices are counted).
+/// @throws Error for a missing key, a value that is not an array, or an entry not an integer.
+inline const nlohmann::json& json_scene_pin_list(const nlohmann::json& root,
+                                                 const std::string& name) {
+  const nlohmann::json& b = json_scene_require(root, "b", name);
+  if (!b.is_array())
+    throw json_scene_error(name, "key \"b\": expected an array of 1-based vertex ids, got ",
+                           describe_json(b));
+  for (std::size_t p = 0; p < b.size(); ++p)
+    if (!b[p].is_number_integer())
+      throw json_scene_error(name, "key \"b\": entry ", p, " (counting from 0) is ",
+                             describe_json(b[p]), ", expected an integer vertex id (1-based)");
+  return b;
+}
+
+/// @brief The pins of "b" (integers, 1-based) as 0-based indices of the OBJ's n vertices.
+/// @throws Error for a pin out of [1, n], naming its position in "b" and the OBJ file.
+inline std::vector<int> json_scene_pins(const nlohmann::json& b, std::int64_t n,
+                                        const std::filesystem::path& obj_path,
+                                        const std::string& name) {
+  std::vector<int> pinned;
+  pinned.reserve(b.size());
+  for (std::size_t p = 0; p < b.size(); ++p) {
+    const bool negative = !b[p].is_number_unsigned() && b[p].get<std::int64_t>() < 0;
+    const bool too_big = !negative && b[p].get<std::uint64_t>() > std::uint64_t(n);
+    if (negative || too_big || b[p].get<std::int64_t>() == 0)
+      throw json_scene_error(name, "key \"b\": entry ", p, " (counting from 0) is ", b[p].dump(),
+                             ", out of range [1, ", n, "]: vertex ids are 1-based and ",
+                             obj_path.string(), " has ", n, " vertices");
+    pinned.push_back(static_cast<int>(b[p].get<std::int64_t>() - 1));
+  }
+  return pinned;
+}
+
+/// @brief "self_collision": `{"thickness": T, "friction": MU}`, both optional, T [m] > 0 and
+/// MU >= 0 (SelfCollision's defaults for what is absent).
+/// @throws Error for a value that is not an object, an unknown key, or a value out of range.
+template <class Scalar>
+contact::SelfCollision<Scalar> json_scene_self_collision(const nlohmann::json& sc,
+                                                         const std::string& name) {
+  if (!sc.is_object())
+    throw json_scene_error(
+        name,
+        "key \"self_collision\": expected an object {\"thickness\": T, \"friction\": MU}, got ",
+        describe_json(sc));
+  contact::SelfCollision<Scalar> parameters;
+  for (const auto& item : sc.items()) {
+    const std::string& key = item.key();
+    const bool thickness = key == "thickness";
+    if (!thickness && key != "friction")
+      throw json_scene_error(name, "key \"self_collision\": unknown key \"", key,
+                             "\" (expected thickness, friction)");
+    const std::string path = "self_collision\": \"" + key;
+    (thickness ? parameters.thickness : parameters.friction) =
+        json_scene_number<Scalar>(path.c_str(), item.value(), thickness, name);
+  }
+  return parameters;
+}
+
+/// @brief "gravity": [gx, gy, gz], three numbers finite in Scalar [m/s^2].
+/// @throws Error showing the value otherwise.
+template <class Scalar>
+Vector3<Scalar> json_scene_gravity(const nlohmann::json& g, const std::string& name) {
+  if (!g.is_array() || g.size() != 3)
+    throw json_scene_error(
+        name, "key \"gravity\": expected [gx, gy, gz] (three numbers, m/s^2), got ", g.dump());
+  Vector3<Scalar> gravity;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const nlohmann::json& v = g[c];
+    const Scalar x = v.is_number() ? static_cast<Scalar>(v.get<double>()) : Scalar(0);
+    if (!v.is_number() || !std::isfinite(x))
+      throw json_scene_error(
+          name, "key \"gravity\": expected [gx, gy, gz] (three finite numbers, m/s^2), got ",
+          g.dump());
+    gravity(Eigen::Index(c)) = x;
+  }
+  return gravity;
+}
+
 }  // namespace detail
 
-/// @brief The reader behind read_json_scene(), on text in memory.
+/// @brief The reader behind read_json_scene(), on text in memory. The keys are checked in this
+/// order, so that of two faults the first reported is the same on every run: the JSON text and
+/// its repeated keys, the root's keys, "obj" and "b" (their types), "k", "m", "png",
+/// "self_collision", "dt", "gravity", then the OBJ file, the pins' range and "colliders".
 /// @param[in] text      the JSON file's text
 /// @param[in] json      its path: named in messages; the `"obj"` key is relative to its folder
 /// @param[in] load_obj  `load_obj(path)` returns the OBJ file's ObjMesh<Scalar> (throwing Error
@@ -50,167 +252,45 @@ SceneDescription<Scalar> parse_json_scene(const std::string& text,
                 "parse_json_scene<Scalar>: Scalar must be float or double");
   using Json = nlohmann::json;
   const std::string name = json.string();
-  auto error = [&name](const auto&... parts) {
-    return Error(detail::message(name, ": ", parts...));
-  };
-
-  std::set<std::string> seen, self_collision_keys;
-  // Inside "colliders": the entry being read and the keys of each object open in it.
-  std::string root_key;
-  long long entry = -1;
-  std::vector<std::set<std::string>> open;
-  Json root;
-  try {
-    root = Json::parse(text, [&](int depth, Json::parse_event_t event, Json& parsed) {
-      using Event = Json::parse_event_t;
-      if (depth == 1 && event == Event::key) {
-        const std::string& key = parsed.get_ref<const std::string&>();
-        if (!seen.insert(key).second) throw error("key \"", key, "\" appears twice");
-        root_key = key;
-      } else if (depth == 2 && root_key == "self_collision" && event == Event::key) {
-        const std::string& key = parsed.get_ref<const std::string&>();
-        if (!self_collision_keys.insert(key).second)
-          throw error("key \"self_collision\": key \"", key, "\" appears twice");
-      } else if (depth >= 2 && root_key == "colliders") {
-        if (depth == 2 &&
-            (event == Event::object_start || event == Event::array_start || event == Event::value))
-          ++entry;  // the next element of the list
-        if (event == Event::object_start) {
-          open.emplace_back();
-        } else if (event == Event::object_end && !open.empty()) {
-          open.pop_back();
-        } else if (event == Event::key && !open.empty() &&
-                   !open.back().insert(parsed.get_ref<const std::string&>()).second) {
-          throw error("colliders[", entry, "]: key \"", parsed.get_ref<const std::string&>(),
-                      "\" appears twice");
-        }
-      }
-      return true;
-    });
-  } catch (const Json::exception& e) {
-    std::string what = e.what();
-    if (const auto close = what.find("] ");
-        what.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
-      what = what.substr(close + 2);
-    throw error("not valid JSON: ", what);
-  }
-  if (!root.is_object())
-    throw error("expected a JSON object {\"obj\": ..., \"b\": [...], \"k\": ...}, got ",
-                root.type_name());
-
-  if (root.contains("massspring_state"))
-    throw error(
-        "a state scene (written by io::write_state), not a JSON+OBJ scene: load it with "
-        "io::load_scene or io::read_state");
-  for (const auto& item : root.items()) {
-    const std::string& key = item.key();
-    if (key == "bc")
-      throw error(
-          "key \"bc\" (pinned positions) is not supported: pinned vertices stay at their "
-          "rest positions");
-    if (key != "obj" && key != "b" && key != "k" && key != "m" && key != "png" &&
-        key != "colliders" && key != "self_collision" && key != "gravity" && key != "dt")
-      throw error("unknown key \"", key,
-                  "\" (expected obj, b, k, m, png, colliders, self_collision, gravity, dt)");
-  }
-  auto require = [&](const char* key) -> const Json& {
-    const auto it = root.find(key);
-    if (it == root.end()) throw error("missing key \"", key, "\"");
-    return *it;
-  };
-  auto number = [&](const char* key, const Json& value, bool strict) {
-    if (!value.is_number())
-      throw error("key \"", key, "\": expected a number ", strict ? "> 0" : ">= 0", ", got ",
-                  detail::describe_json(value));
-    const double x = value.get<double>();
-    const Scalar s = static_cast<Scalar>(x);
-    if (!std::isfinite(s) || (strict ? !(s > 0) : !(s >= 0)))
-      throw error("key \"", key, "\": expected a finite number ", strict ? "> 0" : ">= 0",
-                  (std::isfinite(s) ? "" : " (in this Scalar type)"), ", got ", value.dump());
-    return s;
-  };
-
-  const Json& obj = require("obj");
-  if (!obj.is_string() || obj.get_ref<const std::string&>().empty())
-    throw error("key \"obj\": expected the name of an OBJ file (a string), got ",
-                detail::describe_json(obj));
-  const std::filesystem::path obj_path =
-      json.parent_path() / std::filesystem::path(obj.get_ref<const std::string&>());
-
-  const Json& b = require("b");
-  if (!b.is_array())
-    throw error("key \"b\": expected an array of 1-based vertex ids, got ",
-                detail::describe_json(b));
-  for (std::size_t p = 0; p < b.size(); ++p)
-    if (!b[p].is_number_integer())
-      throw error("key \"b\": entry ", p, " (counting from 0) is ", detail::describe_json(b[p]),
-                  ", expected an integer vertex id (1-based)");
+  const Json root = detail::parse_json_scene_text(text, name);
+  detail::check_json_scene_keys(root, name);
+  const std::filesystem::path obj_path = detail::json_scene_obj_path(root, json, name);
+  const Json& b = detail::json_scene_pin_list(root, name);
 
   SceneDescription<Scalar> scene;
-  scene.stiffness = number("k", require("k"), false);
-  if (const auto m = root.find("m"); m != root.end()) scene.mass = number("m", *m, true);
+  scene.stiffness = detail::json_scene_number<Scalar>(
+      "k", detail::json_scene_require(root, "k", name), false, name);
+  if (const auto m = root.find("m"); m != root.end())
+    scene.mass = detail::json_scene_number<Scalar>("m", *m, true, name);
   if (const auto png = root.find("png"); png != root.end() && !png->is_string())
-    throw error("key \"png\": expected the name of a texture image (a string), got ",
-                detail::describe_json(*png));
-  if (const auto sc = root.find("self_collision"); sc != root.end()) {
-    if (!sc->is_object())
-      throw error(
-          "key \"self_collision\": expected an object {\"thickness\": T, \"friction\": MU}, got ",
-          detail::describe_json(*sc));
-    contact::SelfCollision<Scalar> parameters;
-    for (const auto& item : sc->items()) {
-      const std::string& key = item.key();
-      const bool thickness = key == "thickness";
-      if (!thickness && key != "friction")
-        throw error("key \"self_collision\": unknown key \"", key,
-                    "\" (expected thickness, friction)");
-      const std::string path = "self_collision\": \"" + key;
-      (thickness ? parameters.thickness : parameters.friction) =
-          number(path.c_str(), item.value(), thickness);
-    }
-    scene.self_collision = parameters;
-  }
-
-  if (const auto dt = root.find("dt"); dt != root.end()) scene.dt = number("dt", *dt, true);
-  if (const auto g = root.find("gravity"); g != root.end()) {
-    if (!g->is_array() || g->size() != 3)
-      throw error("key \"gravity\": expected [gx, gy, gz] (three numbers, m/s^2), got ", g->dump());
-    Vector3<Scalar> gravity;
-    for (std::size_t c = 0; c < 3; ++c) {
-      const Json& v = (*g)[c];
-      const Scalar x = v.is_number() ? static_cast<Scalar>(v.get<double>()) : Scalar(0);
-      if (!v.is_number() || !std::isfinite(x))
-        throw error("key \"gravity\": expected [gx, gy, gz] (three finite numbers, m/s^2), got ",
-                    g->dump());
-      gravity(Eigen::Index(c)) = x;
-    }
-    scene.gravity = gravity;
-  }
+    throw detail::json_scene_error(
+        name, "key \"png\": expected the name of a texture image (a string), got ",
+        detail::describe_json(*png));
+  if (const auto sc = root.find("self_collision"); sc != root.end())
+    scene.self_collision = detail::json_scene_self_collision<Scalar>(*sc, name);
+  if (const auto dt = root.find("dt"); dt != root.end())
+    scene.dt = detail::json_scene_number<Scalar>("dt", *dt, true, name);
+  if (const auto g = root.find("gravity"); g != root.end())
+    scene.gravity = detail::json_scene_gravity<Scalar>(*g, name);
 
   std::optional<ObjMesh<Scalar>> loaded = load_obj(obj_path);
-  if (!loaded) throw error("key \"obj\": OBJ file ", obj_path.string(), " not found");
+  if (!loaded)
+    throw detail::json_scene_error(name, "key \"obj\": OBJ file ", obj_path.string(), " not found");
   ObjMesh<Scalar> mesh = std::move(*loaded);
   const auto n = static_cast<std::int64_t>(mesh.vertices.rows());
   if (n == 0)
-    throw error("key \"obj\": OBJ file ", obj_path.string(),
-                " has no vertices: a scene needs at least one point");
-
-  scene.pinned.reserve(b.size());
-  for (std::size_t p = 0; p < b.size(); ++p) {
-    const bool negative = !b[p].is_number_unsigned() && b[p].get<std::int64_t>() < 0;
-    const bool too_big = !negative && b[p].get<std::uint64_t>() > std::uint64_t(n);
-    if (negative || too_big || b[p].get<std::int64_t>() == 0)
-      throw error("key \"b\": entry ", p, " (counting from 0) is ", b[p].dump(),
-                  ", out of range [1, ", n, "]: vertex ids are 1-based and ", obj_path.string(),
-                  " has ", n, " vertices");
-    scene.pinned.push_back(static_cast<int>(b[p].get<std::int64_t>() - 1));
-  }
+    throw detail::json_scene_error(name, "key \"obj\": OBJ file ", obj_path.string(),
+                                   " has no vertices: a scene needs at least one point");
+  scene.pinned = detail::json_scene_pins(b, n, obj_path, name);
   if (const auto colliders = root.find("colliders"); colliders != root.end())
     scene.colliders =
         detail::parse_json_colliders<Scalar>(*colliders, name, json.parent_path(), load_obj);
   scene.vertices = std::move(mesh.vertices);
   scene.faces = std::move(mesh.faces);
   scene.edges = std::move(mesh.edges);
+  scene.source.file = obj_path.string();
+  scene.source.vertex_lines = std::move(mesh.vertex_lines);
+  scene.source.face_lines = std::move(mesh.face_lines);
   return scene;
 }
 

@@ -34,6 +34,10 @@ struct ObjMesh {
   /// @brief #E by 2 segments: the `f i j` lines and the consecutive pairs of each `l` polyline, in
   /// file order.
   Edges edges = Edges(0, 2);
+  /// @brief The line (1-based) of each vertex's `v` statement: #V entries.
+  std::vector<std::size_t> vertex_lines;
+  /// @brief The line (1-based) of each polygon's `f` statement: one entry per face.
+  std::vector<std::size_t> face_lines;
 };
 
 namespace detail {
@@ -82,6 +86,7 @@ ObjMesh<Scalar> parse_obj(std::string_view text, const std::string& name) {
   };
 
   std::vector<Scalar> coordinates;
+  std::vector<std::size_t> vertex_lines, face_lines;
   std::vector<std::vector<int>> faces;
   std::vector<std::array<int, 2>> edges;
   // Positive indices may refer to vertices defined later in the file: their range is checked at
@@ -194,6 +199,7 @@ ObjMesh<Scalar> parse_obj(std::string_view text, const std::string& name) {
         }
         if (c <= 3) coordinates.push_back(x);
       }
+      vertex_lines.push_back(line_number);
     } else if (keyword == "f") {
       if (args < 2)
         throw error(
@@ -210,8 +216,10 @@ ObjMesh<Scalar> parse_obj(std::string_view text, const std::string& name) {
       }
       if (polygon.size() == 2)
         edges.push_back({polygon[0], polygon[1]});
-      else
+      else {
         faces.push_back(polygon);
+        face_lines.push_back(line_number);
+      }
     } else if (keyword == "l") {
       if (args < 2) throw error("a polyline needs at least 2 vertices (l i j ...), got ", args);
       int previous = -1;
@@ -245,6 +253,8 @@ ObjMesh<Scalar> parse_obj(std::string_view text, const std::string& name) {
   ObjMesh<Scalar> mesh;
   mesh.vertices = Eigen::Map<const Points<Scalar>>(coordinates.data(), n, 3);
   mesh.faces = std::move(faces);
+  mesh.vertex_lines = std::move(vertex_lines);
+  mesh.face_lines = std::move(face_lines);
   mesh.edges.resize(Eigen::Index(edges.size()), 2);
   for (std::size_t e = 0; e < edges.size(); ++e)
     mesh.edges.row(Eigen::Index(e)) << edges[e][0], edges[e][1];
@@ -279,7 +289,7 @@ inline void append_index(std::string& out, int i) {
 /// @tparam Scalar float or double: coordinates are parsed directly in this type (std::from_chars,
 /// locale-independent, correctly rounded).
 /// @param[in] path  the .obj file
-/// @return the mesh, indices 0-based
+/// @return the mesh, indices 0-based, with the line of each vertex and polygon (for messages)
 /// @throws Error whose message starts with `<path>:<line>: ` and says what was expected, for any
 /// other statement, a malformed or non-finite number, a wrong count of coordinates, an index of
 /// 0, an index out of range (reported as written, 1-based), a face of fewer than 2 vertices or one

@@ -28,6 +28,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -73,6 +74,24 @@ namespace detail {
 inline constexpr const char* kStateSceneKey = "massspring_state";
 
 }  // namespace detail
+
+/// @brief The names (ForceTerm::name) of the force terms a state scene can hold, in the order
+/// of the file's comment: "gravity", "constant force", "linear drag", "gravitational
+/// attraction", "vortex force". write_state() refuses a system with any other term.
+inline std::vector<std::string> state_force_terms() {
+  return {std::begin(detail::kStateForceTermNames), std::end(detail::kStateForceTermNames)};
+}
+
+/// @brief True when a state scene can hold a force term named `name` (ForceTerm::name).
+inline bool state_holds_force_term(const std::string& name) {
+  for (const char* term : detail::kStateForceTermNames)
+    if (name == term) return true;
+  return false;
+}
+
+/// @brief The terms of state_force_terms() as one phrase for messages: "gravity, constant
+/// force, linear drag, gravitational attraction and vortex force".
+inline std::string state_force_terms_text() { return detail::state_force_terms_text(); }
 
 /// @brief Writes a system's whole model and state as a state scene (see the file's comment),
 /// atomically: to `<path>.tmp`, then renamed over `path`.

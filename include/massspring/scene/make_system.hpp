@@ -35,29 +35,43 @@ inline Triangles fan_triangles(const std::vector<std::vector<int>>& faces,
 
 namespace detail {
 
-/// @brief Gives `system` the fan triangles of `faces` as its surface; an error names the face
-/// (index from 0 and its vertices) before the system's own message about the triangle.
+/// @brief True when `source` gives a line for each of `count` items of `lines`' kind.
+inline bool has_lines(const MeshSource& source, const std::vector<std::size_t>& lines,
+                      std::size_t count) {
+  return !source.file.empty() && lines.size() == count;
+}
+
+/// @brief Gives `system` the fan triangles of `faces` as its surface. A triangle
+/// detail::surface_triangle_problem() refuses is named by its face: with a `source`, as
+/// `<file>:<line>: face (1, 2, 3, 4): fan triangle (1, 3, 4): <what>` in the file's 1-based
+/// indices (a triangle face without "fan triangle"); without, as `face 0 (0, 1, 2, 3): surface
+/// triangle 1 = (0, 2, 3): <what>`, 0-based, as set_surface() numbers the triangles.
 template <class System>
-void set_face_surface(System& system, const std::vector<std::vector<int>>& faces) {
+void set_face_surface(System& system, const std::vector<std::vector<int>>& faces,
+                      const MeshSource& source) {
   std::vector<std::size_t> face_of;
   const Triangles triangles = fan_triangles(faces, &face_of);
-  try {
-    system.set_surface(triangles);
-  } catch (const Error& e) {
-    // Find the triangle it refused (set_surface checks them in order), to name its face.
-    System probe = system;
-    for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
-      try {
-        probe.set_surface(Triangles(triangles.row(t)));
-      } catch (const Error&) {
-        const std::vector<int>& face = faces[face_of[std::size_t(t)]];
-        std::string vertices;
-        for (std::size_t v = 0; v < face.size(); ++v) vertices += message(v ? ", " : "", face[v]);
-        throw Error(message("face ", face_of[std::size_t(t)], " (", vertices, "): ", e.what()));
-      }
-    }
-    throw;
+  const bool in_file = has_lines(source, source.face_lines, faces.size());
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    const int a = triangles(t, 0), b = triangles(t, 1), c = triangles(t, 2);
+    const std::string problem = surface_triangle_problem(a, b, c, system.rest_positions());
+    if (problem.empty()) continue;
+    const std::size_t f = face_of[std::size_t(t)];
+    const std::vector<int>& face = faces[f];
+    const int base = in_file ? 1 : 0;
+    std::string vertices;
+    for (std::size_t v = 0; v < face.size(); ++v)
+      vertices += message(v ? ", " : "", face[v] + base);
+    if (in_file)
+      throw Error(message(source.file, ':', source.face_lines[f], ": face (", vertices, "): ",
+                          face.size() > 3
+                              ? message("fan triangle (", a + 1, ", ", b + 1, ", ", c + 1, "): ")
+                              : std::string(),
+                          problem));
+    throw Error(message("face ", f, " (", vertices, "): surface triangle ", t, " = (", a, ", ", b,
+                        ", ", c, "): ", problem));
   }
+  system.set_surface(triangles);
 }
 
 }  // namespace detail
@@ -68,9 +82,11 @@ void set_face_surface(System& system, const std::vector<std::vector<int>>& faces
 /// faces), self-collision when the scene asks for it, then the colliders in their order, and a
 /// Gravity term when the scene has `gravity` (its `dt` is not part of a system).
 /// @throws Error for invalid indices, a missing mass without faces, a vertex of zero mass, a face
-/// with a fan triangle of zero area (naming the face and the triangle), self-collision asked for
-/// without faces or with parameters out of range, or a collider make_collider() refuses (named
-/// `colliders[i] (shape): `).
+/// with a fan triangle of zero area, self-collision asked for without faces or with parameters
+/// out of range, or a collider make_collider() refuses (named `colliders[i] (shape): `). A vertex
+/// or a face is named where the scene's `source` says it was written, `<file>:<line>: vertex 4`,
+/// `<file>:<line>: face (1, 2, 3)` (the file's 1-based indices); in a scene built in code, by
+/// its 0-based index, `point 3`, `face 0 (0, 1, 2)` (see detail::set_face_surface()).
 template <class System, class Scalar>
 System make_system(const SceneDescription<Scalar>& scene) {
   using S = typename System::Scalar;
@@ -83,16 +99,20 @@ System make_system(const SceneDescription<Scalar>& scene) {
     if (scene.faces.empty())
       throw Error("scene has no faces to take masses from: give a mass (\"m\")");
     masses = voronoi_masses(scene.vertices, scene.faces).template cast<S>();
+    const bool in_file = detail::has_lines(scene.source, scene.source.vertex_lines, std::size_t(n));
     for (int i = 0; i < n; ++i)
       if (!(masses(i) > 0))
-        throw Error(detail::message("point ", i, " (OBJ vertex ", i + 1,
-                                    "): lies on no face of nonzero area, so its Voronoi mass is ",
-                                    masses(i), "; give a mass (\"m\")"));
+        throw Error(detail::message(
+            in_file ? detail::message(scene.source.file, ':',
+                                      scene.source.vertex_lines[std::size_t(i)], ": vertex ", i + 1)
+                    : detail::message("point ", i),
+            ": lies on no face of nonzero area, so its Voronoi mass is ", masses(i),
+            "; give a mass (\"m\")"));
   }
   System system(scene.vertices.template cast<S>(), springs, masses,
                 Vector<S>::Constant(springs.rows(), S(scene.stiffness)));
   system.pin(scene.pinned);
-  if (!scene.faces.empty()) detail::set_face_surface(system, scene.faces);
+  if (!scene.faces.empty()) detail::set_face_surface(system, scene.faces, scene.source);
   if (scene.self_collision) {
     if (scene.faces.empty())
       throw Error(

@@ -3,7 +3,9 @@
 /// @brief SceneDescription: a mesh, its pins, stiffness and mass, as the JSON+OBJ
 /// scenes hold them, and the obstacles it falls on. make_system() turns it into a MassSpringSystem.
 
+#include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "massspring/contact/self_collision.hpp"
@@ -11,6 +13,18 @@
 #include "massspring/types.hpp"
 
 namespace massspring {
+
+/// @brief Where a scene's mesh was read from, so that a message can point into the file: its name
+/// and the line of each vertex and of each polygon, as read_obj() gives them (ObjMesh). Empty for
+/// a mesh built in code; the file's indices are 1-based (OBJ), the description's 0-based.
+struct MeshSource {
+  /// @brief The file's name as messages give it; empty: built in code.
+  std::string file;
+  /// @brief The line (1-based) of each vertex: #V entries, or none.
+  std::vector<std::size_t> vertex_lines;
+  /// @brief The line (1-based) of each polygon of `faces`: one entry per polygon, or none.
+  std::vector<std::size_t> face_lines;
+};
 
 /// @brief The content of a JSON+OBJ scene (see docs/scenes.md).
 ///
@@ -44,6 +58,9 @@ struct SceneDescription {
   /// @brief The time step the scene is meant to run at [s], > 0 (the key "dt"). Not part of a
   /// system: a program reads it here (massspring-simulate uses it unless --dt is given).
   std::optional<Scalar> dt;
+  /// @brief The OBJ file `vertices` and `faces` were read from (read_json_scene() sets it), for
+  /// make_system()'s messages; empty for a scene built in code. Not part of the scene written.
+  MeshSource source;
 };
 
 }  // namespace massspring

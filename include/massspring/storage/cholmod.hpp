@@ -123,7 +123,7 @@ class CholmodCholesky {
   /// @brief The ordering CHOLMOD chose (CHOLMOD_AMD, CHOLMOD_METIS, ...; see cholmod.h).
   [[nodiscard]] int chosen_ordering() const { return analysed_ordering_; }
 
-  /// @brief Allow the AVX2 + FMA substitution (default true; see SparseCholesky::set_avx2).
+  /// @brief Allow the AVX2 + FMA substitution (default true; see SparseCholesky::set_simd).
   void set_simd(bool allowed) { rows_.simd = allowed; }
   /// @brief True when solves use the AVX2 + FMA substitution.
   [[nodiscard]] bool simd() const { return lower().simd; }

@@ -13,6 +13,7 @@
 /// (json_text.hpp). Other terms (your own, FOSSSim's penalty contact) cannot be written.
 
 #include <cstddef>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -29,9 +30,20 @@
 
 namespace massspring::io::detail {
 
-/// @brief The force terms a state scene holds, for messages.
-inline constexpr const char* kStateForceTerms =
-    "gravity, constant force, linear drag, gravitational attraction and vortex force";
+/// @brief The force terms a state scene holds, by their ForceTerm name (Gravity,
+/// ConstantForce, LinearDrag, GravitationalAttraction, VortexForce): the one list, read through
+/// io::state_force_terms() (io/state_scene.hpp).
+inline constexpr const char* kStateForceTermNames[] = {
+    "gravity", "constant force", "linear drag", "gravitational attraction", "vortex force"};
+
+/// @brief "gravity, constant force, ... and vortex force": kStateForceTermNames for messages.
+inline std::string state_force_terms_text() {
+  std::string out;
+  const std::size_t n = std::size(kStateForceTermNames);
+  for (std::size_t k = 0; k < n; ++k)
+    out += std::string(k == 0 ? "" : k + 1 == n ? " and " : ", ") + kStateForceTermNames[k];
+  return out;
+}
 
 /// @brief Appends the JSON array of `system`'s force terms.
 /// @throws Error "force term k (name) cannot be written: ..." for a term of another type (nothing
@@ -89,7 +101,7 @@ void append_state_forces(std::string& out, const System& system) {
     } else {
       throw Error(massspring::detail::message("force term ", k, " (", terms[k].name,
                                               ") cannot be written: a state scene holds ",
-                                              kStateForceTerms, " terms"));
+                                              state_force_terms_text(), " terms"));
     }
     out += '}';
   }
