@@ -3,7 +3,8 @@
 /// @brief Scenes for self-collision and edge contact: cloths that fall onto obstacles and onto
 /// themselves, as whole SceneDescriptions (cloth, masses and colliders).
 ///
-/// Common to all: y is up and the floor is the plane y = 0 (normal +y); cloths are make_cloth()
+/// Common to all: y is up and the floor, where a scene has one, is the plane y = 0 (normal +y);
+/// cloths are make_cloth()
 /// grids with one diagonal per cell (so every face is a triangle, the surface self-collision acts
 /// on) and skip-one bending springs, k = 1000 N/m, nothing pinned, at rest; Coulomb friction 0.3
 /// on every collider. Masses are the lumped Voronoi areas at 1 kg/m^2 unless a scene says
@@ -12,6 +13,7 @@
 /// builds (MassSpringSystem::set_surface() with the faces, then set_self_collision()).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -151,6 +153,35 @@ inline SceneDescription<double> large_drape_scene() {
   scene.mass = 1.9 / (81 * 81);
   scene.colliders = {detail::contact_floor(), detail::contact_sphere({0.0, 0.5, 0.0}, 0.5)};
   return scene;
+}
+
+/// @brief A cloth twisted by its two ends: 21 x 21 points over 1 m x 1 m (5 cm spacing),
+/// horizontal at y = 1, centred on the y axis; its two ends, the columns x = -0.5 (points
+/// 21 r) and x = +0.5 (points 21 r + 20), pinned. twisting_cloth_target() moves them. No
+/// colliders: only the cloth's contact with itself keeps it from passing through itself.
+inline SceneDescription<double> twisting_cloth_scene() {
+  SceneDescription<double> scene = detail::contact_cloth(21, 21, 1.0, 1.0, 1.0);
+  for (int r = 0; r < 21; ++r) {
+    scene.pinned.push_back(21 * r);
+    scene.pinned.push_back(21 * r + 20);
+  }
+  std::sort(scene.pinned.begin(), scene.pinned.end());
+  return scene;
+}
+
+/// @brief Where the twisting cloth's pinned point that starts at `start` is at time t [s] >= 0:
+/// its end turned about the cloth's middle line (the x axis through y = 1, z = 0) by +pi t for
+/// the end at x < 0 and -pi t for the end at x > 0 (half a turn per second each, in opposite
+/// directions), and moved along x towards the middle so that the ends' distance shrinks from
+/// 1 m by 30% over 4 s (0.075 m/s; no closer after 4 s).
+inline Vector3<double> twisting_cloth_target(const Vector3<double>& start, double t) {
+  const double pi = 3.14159265358979323846;
+  const double side = start.x() < 0 ? -1.0 : 1.0;
+  const double angle = -side * pi * t;
+  const double y = start.y() - 1.0, z = start.z();
+  const double c = std::cos(angle), s = std::sin(angle);
+  const double half = 0.5 * (1.0 - 0.3 * std::min(t, 4.0) / 4.0);
+  return {side * half, 1.0 + c * y - s * z, s * y + c * z};
 }
 
 }  // namespace massspring

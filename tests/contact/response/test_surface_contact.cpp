@@ -47,6 +47,7 @@ struct Run {
   int max_crossings = 0;
   long impulses = 0;
   long zone_points = 0;
+  long projected_points = 0;
   bool all_ok = true;
   double min_height = 0;  // the lowest y at the end [m]
 };
@@ -59,6 +60,7 @@ Run run(System& s, Stepper& stepper, int steps, const Eigen::Vector3d* rod = nul
     r.all_ok = r.all_ok && report.ok();
     r.impulses += report.contact_impulses;
     r.zone_points += report.contact_zone_points;
+    r.projected_points += s.surface_contact().last_report().projected_points;
     int c = massspring::test::count_crossings(s.positions(), s.surface(), edges);
     if (rod)
       c += massspring::test::count_segment_crossings(s.positions(), s.surface(), rod[0], rod[1]);
@@ -101,10 +103,12 @@ massspring::SceneDescription<double> wavy_ribbon() {
 
 // setup(stepper) sets the stepper's options before its precompute.
 template <class Stepper, class Setup>
-Run ribbon_run(bool self, int steps, double dt, int impulse_rounds, Setup setup) {
+Run ribbon_run(bool self, int steps, double dt, int impulse_rounds, Setup setup,
+               int projection_rounds = -1) {
   System s = surface_system(wavy_ribbon());
   if (self) s.set_self_collision(SelfCollision<double>{});
-  if (impulse_rounds >= 0) s.surface_contact().impulse_rounds = impulse_rounds;
+  if (impulse_rounds >= 0) s.surface_contact().set_impulse_rounds(impulse_rounds);
+  if (projection_rounds >= 0) s.surface_contact().set_projection_rounds(projection_rounds);
   Stepper stepper;
   setup(stepper);
   stepper.precompute(s, dt);
@@ -139,8 +143,14 @@ TEST_CASE(
     CHECK(r.impulses > 0);
     CHECK(r.min_height >= 0);  // and no point under the floor
   }
-  SUBCASE("impact zones alone (no impulse rounds) keep it free of crossings too") {
+  SUBCASE("the projection alone (no impulse rounds) keeps it free of crossings too") {
     const Run r = ribbon_run<FMS>(true, 60, kRibbonDt, 0, ribbon_ten_iterations);
+    CHECK(r.all_ok);
+    CHECK(r.max_crossings == 0);
+    CHECK(r.projected_points > 0);
+  }
+  SUBCASE("rigid impact zones alone (no impulse or projection rounds) keep it free too") {
+    const Run r = ribbon_run<FMS>(true, 60, kRibbonDt, 0, ribbon_ten_iterations, 0);
     CHECK(r.all_ok);
     CHECK(r.max_crossings == 0);
     CHECK(r.zone_points > 0);
@@ -311,8 +321,7 @@ TEST_CASE_TEMPLATE("surface contact: impulses between cloth parts keep momentum 
 TEST_CASE("surface contact: a step it cannot resolve is reported and leaves the last good state") {
   System s = surface_system(stacked_cloths());  // the upper cloth lands on the lower one
   s.set_self_collision(SelfCollision<double>{});
-  s.surface_contact().impulse_rounds = 0;
-  s.surface_contact().max_rounds = 1;  // detection once, no room to respond
+  s.surface_contact().set_impulse_rounds(0).set_max_rounds(1);  // detection once, no room to respond
   massspring::FastMassSpring<System> fms;
   fms.options.iterations = 10;
   fms.precompute(s, 1.0 / 30);
@@ -342,9 +351,9 @@ TEST_CASE("surface contact: a copy of a system has its own pass and steps as the
   assigned = s;  // copy assignment
   CHECK(&copy.surface_contact() != &s.surface_contact());
   CHECK(&assigned.surface_contact() != &s.surface_contact());
-  copy.surface_contact().max_rounds = 1;  // the original's pass keeps its own
-  CHECK(s.surface_contact().max_rounds == 64);
-  copy.surface_contact().max_rounds = 64;
+  copy.surface_contact().set_max_rounds(1);  // the original's pass keeps its own
+  CHECK(s.surface_contact().max_rounds() == 64);
+  copy.surface_contact().set_max_rounds(64);
   int impulses = 0;
   for (int k = 0; k < 200; ++k) {
     const StepReport r = stepper.step(s);

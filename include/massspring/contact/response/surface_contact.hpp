@@ -31,12 +31,24 @@
 ///    collision) is a collision. A
 ///    few rounds of inelastic impulses, each cancelling the pair's approach along the normal at the
 ///    time of impact, with friction.
-/// 3. Rigid impact zones, the fail-safe: the points of collisions that remain are merged into
-///    zones (a zone grows with every collision that touches it), and each zone moves rigidly over
-///    the step, keeping its linear and angular momentum (contact/response/impact_zones.hpp); a
-///    zone that holds a pinned point stays where it started, one that holds an obstacle's
-///    element moves with that obstacle. Rigid motion keeps the distances within a zone, so the
-///    loop ends: at worst every colliding point moves as one body.
+/// 3. Impact zones, the fail-safe, first by inelastic projection (Harmon et al. 2008, section 4;
+///    contact/response/inelastic_projection.hpp): each collision that remains adds the
+///    linearised constraint that its pair stop approaching along the normal at the time of
+///    impact and part a little (contact/response/impact_zone_stages.hpp has the bound), and the
+///    end positions are projected, in the mass
+///    norm, onto every constraint gathered so far in the step. Only normal displacements
+///    change: a zone keeps its sliding, and pinned points, the obstacles' and points held by a
+///    solid (infinite mass) never move. Detection runs again after each projection.
+/// 4. Rigid impact zones, the last resort, when the projection rounds are spent or a constraint
+///    cannot be met by the points that may move: the points of the collisions that remain merge
+///    into zones (a zone grows with every collision that touches it), and each zone moves
+///    rigidly over the step, keeping its linear and angular momentum (contact/response/
+///    impact_zones.hpp); a zone that holds an obstacle's element moves with that obstacle, one
+///    that holds pinned points with their common displacement, one that holds a point resting
+///    on a solid stays where it started. Rigid motion keeps the distances within a zone, so the
+///    loop ends: at worst every colliding point moves as one body. A zone whose pinned points
+///    move differently (or not with its obstacle) has no rigid motion that keeps them on their
+///    targets: the pass then stops, unresolved, and never moves a pinned point.
 ///
 /// An impulse on a pair with points i of weights a_i (barycentric, + on one side, - on the other)
 /// and inverse masses w_i changes their displacements by a_i w_i lambda n / sum a_k^2 w_k, so
@@ -62,11 +74,13 @@
 #include "massspring/contact/distance/bounding_balls.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
-#include "massspring/contact/response/impact_zones.hpp"
+#include "massspring/contact/response/impact_zone_stages.hpp"
 #include "massspring/contact/response/surface_candidates.hpp"
 #include "massspring/contact/response/surface_contact_slot.hpp"
 #include "massspring/contact/response/surface_elements.hpp"
 #include "massspring/contact/self_collision.hpp"
+#include "massspring/detail/validate.hpp"
+#include "massspring/error.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
@@ -79,10 +93,30 @@ class SurfaceContact {
   using V3 = Vector3<Scalar>;
   using M3 = Eigen::Matrix<Scalar, 3, 3>;
 
-  /// @brief Rounds of collision impulses before impact zones take over.
-  int impulse_rounds = 12;
-  /// @brief Rounds of detection in all; enough for zones to merge in any realistic step.
-  int max_rounds = 64;
+  /// @brief Rounds of collision impulses before impact zones take over, >= 0. Default 12.
+  [[nodiscard]] int impulse_rounds() const { return impulse_rounds_; }
+  /// @brief Rounds of inelastic projection before rigid zones take over, >= 0. Default 32.
+  [[nodiscard]] int projection_rounds() const { return projection_rounds_; }
+  /// @brief Rounds of detection in all, >= 1; a step with collisions left after them is refused.
+  /// Default 64, enough for zones to merge in any realistic step.
+  [[nodiscard]] int max_rounds() const { return max_rounds_; }
+  /// @throws Error when `rounds` < 0.
+  SurfaceContact& set_impulse_rounds(int rounds) {
+    impulse_rounds_ = checked_rounds("impulse_rounds", rounds, 0);
+    return *this;
+  }
+  /// @throws Error when `rounds` < 0.
+  SurfaceContact& set_projection_rounds(int rounds) {
+    projection_rounds_ = checked_rounds("projection_rounds", rounds, 0);
+    return *this;
+  }
+  /// @throws Error when `rounds` < 1: without a round of detection no step could be checked.
+  SurfaceContact& set_max_rounds(int rounds) {
+    max_rounds_ = checked_rounds("max_rounds", rounds, 1);
+    return *this;
+  }
+  /// @brief What the last resolve() did.
+  [[nodiscard]] const SurfaceContactReport& last_report() const { return last_report_; }
 
   /// @brief Makes resolve() run the pipeline (instantiates it).
   void arm() {
@@ -117,16 +151,28 @@ class SurfaceContact {
     return s.resolve_impl(in);
   }
 
+  static int checked_rounds(const char* name, int rounds, int least) {
+    if (rounds < least)
+      throw Error(massspring::detail::message("surface contact: ", name, " must be >= ", least,
+                                              ", got ", rounds));
+    return rounds;
+  }
+
+  // What the pass is doing with the collisions that remain.
+  enum class Stage { Impulses, Projection, Rigid };
+
   SurfaceContactReport resolve_impl(const Input& in) {
     SurfaceContactReport report;
     e_.setup(in);
-    zones_active_ = false;
+    zones_.begin_step();
     colliders_ = &in.colliders;
     moved_.assign(std::size_t(e_.x0.rows()), 0);
-    if (!e_.any_pairs) return report;
+    if (!e_.any_pairs) return last_report_ = report;
     const Scalar h = in.self_collision ? in.self_collision->thickness : Scalar(0);
     const Scalar mu = in.self_collision ? in.self_collision->friction : Scalar(0);
-    for (int round = 0; round < max_rounds; ++round) {
+    Stage stage = Stage::Impulses;
+    int projections = 0;
+    for (int round = 0; round < max_rounds_; ++round) {
       report.rounds = round + 1;
       candidates(h, round == 0);
       // Repulsion moves points: those it pushed into a solid are held, and the candidates of
@@ -141,17 +187,25 @@ class SurfaceContact {
       }
       const std::size_t last_hits = round == 0 ? hits_.max_size() : hits_.size();
       if (!detect(round == 0)) break;
-      if (round + 1 == max_rounds) {
+      if (round + 1 == max_rounds_) {
         report.resolved = false;
         break;
       }
-      // Impulses while they make progress; impact zones once they stop (hits between immobile
-      // points, or a crowd impulses only shuffle).
-      if (!zones_active_ && round < impulse_rounds && hits_.size() < last_hits) {
+      // Impulses while they make progress; then the projection; rigid zones when it is spent or
+      // stuck.
+      if (stage == Stage::Impulses && round < impulse_rounds_ && hits_.size() < last_hits) {
         report.impulses += collide(mu);
         e_.hold_pushed_into_solids(in, moved_);
+      } else if (stage != Stage::Rigid && projections < projection_rounds_) {
+        stage = Stage::Projection;
+        ++projections;
+        if (!zones_.project(e_, in, hits_, moved_, report)) projections = projection_rounds_;
       } else {
-        report.zone_points = zones(in);
+        stage = Stage::Rigid;
+        if (!zones_.rigid(e_, in, hits_, moved_, report)) {
+          report.resolved = false;
+          break;
+        }
       }
     }
     // Write back: positions, and velocities changed by the change of displacement over dt.
@@ -163,7 +217,7 @@ class SurfaceContact {
       in.x_end.row(i) = e_.x1.row(i);
       in.v_end.row(i) += inv_dt * moved.transpose();
     }
-    return report;
+    return last_report_ = report;
   }
 
   // The cloth's boxes are grown by half the largest distance two cloth elements are tested at
@@ -283,7 +337,7 @@ class SurfaceContact {
       if (!all && !(moved_[std::size_t(p[0])] || moved_[std::size_t(p[1])] ||
                     moved_[std::size_t(p[2])] || moved_[std::size_t(p[3])]))
         continue;
-      if (same_zone(p[0], p[1], p[2], p[3])) continue;
+      if (zones_.same_rigid_zone(p)) continue;
       // Swept boxes farther apart than the gap along an axis, or bounding balls that stay
       // farther apart: no contact during the step.
       const int split = q.kind == 0 ? 1 : 2;
@@ -293,11 +347,12 @@ class SurfaceContact {
       // The gap first; only a pair it reports needs the start distance (a pair that starts
       // closer keeps half of it): with a smaller gap the CCD could only report less.
       CcdResult<Scalar> r = ccd(q.kind, p, gap);
+      Scalar kept = gap;
       if (r.hit) {
-        const Scalar kept = start_gap(q, gap);
+        kept = start_gap(q, gap);
         if (kept < gap) r = ccd(q.kind, p, kept);
       }
-      if (r.hit) hits_.push_back({q, r.toi});
+      if (r.hit) hits_.push_back({q, r.toi, kept});
     }
     std::fill(moved_.begin(), moved_.end(), char(0));
     return !hits_.empty();
@@ -315,17 +370,12 @@ class SurfaceContact {
     const Stencil s = e_.stencil(q, [&](int i) { return e_.p0(i); });
     return s.distance < gap ? s.distance / 2 : gap;
   }
-  bool same_zone(int a, int b, int c, int e) {
-    if (!zones_active_) return false;
-    const int z = zones_.zone_of(a);
-    return z >= 0 && zones_.zone_of(b) == z && zones_.zone_of(c) == z && zones_.zone_of(e) == z;
-  }
 
   // 2'. One round of inelastic impulses on the hits: each cancels its pair's approach along the
   // normal at the time of impact.
   int collide(Scalar mu) {
     int count = 0;
-    for (const Hit& hit : hits_) {
+    for (const SurfaceHit<Scalar>& hit : hits_) {
       const Scalar toi = hit.toi;
       const Stencil s = e_.stencil(hit.pair, [&](int i) { return V3(e_.p0(i) + toi * e_.d(i)); });
       Scalar approach = 0;
@@ -349,82 +399,17 @@ class SurfaceContact {
     return owner >= 0 ? (*colliders_)[owner].kinetic_friction() : Scalar(0);
   }
 
-  // 3. Rigid impact zones: the hits' points join zones, and each zone moves rigidly.
-  int zones(const Input& in) {
-    if (!zones_active_) {
-      zones_.reset(int(e_.x0.rows()));
-      zones_active_ = true;
-    }
-    for (const Hit& hit : hits_) {
-      const Stencil s = e_.stencil(hit.pair, [&](int i) { return e_.p0(i); });
-      bool immobile = false;
-      for (int i : s.p) immobile = immobile || e_.w(i) == 0;
-      zones_.add(s.p, 4, immobile);
-    }
-    zones_.groups(members_, starts_);
-    int moved = 0;
-    velocity_scratch_.resize(e_.x1.rows(), 3);
-    for (std::size_t z = 0; z + 1 < starts_.size(); ++z) {
-      const int* m = members_.data() + starts_[z];
-      const int count = starts_[z + 1] - starts_[z];
-      // A zone that holds an obstacle's element moves with that obstacle; one that holds a
-      // pinned point (or a point held by a solid), with that point's displacement; any other
-      // rigidly. Pinned points keep their prescribed motion.
-      int obstacle = -1, anchor = -1;
-      for (int k = 0; k < count; ++k) {
-        const int i = m[k];
-        if (e_.owner[std::size_t(i)] >= 0)
-          obstacle = e_.owner[std::size_t(i)];
-        else if (e_.w(i) == 0 && (anchor < 0 || e_.pinned[std::size_t(i)]))
-          anchor = i;
-      }
-      const auto movable = [&](int i) {
-        return e_.owner[std::size_t(i)] < 0 && !e_.pinned[std::size_t(i)];
-      };
-      if (obstacle >= 0) {
-        // x1 = R_e R_s^T (x0 - t_s) + t_e.
-        const Collider<Scalar>& c = in.colliders[obstacle];
-        const M3 rel = c.end_rotation() * c.rotation().transpose();
-        for (int k = 0; k < count; ++k)
-          if (movable(m[k]))
-            e_.x1.row(m[k]) =
-                (rel * (e_.p0(m[k]) - c.translation()) + c.end_translation()).transpose();
-      } else if (anchor >= 0) {
-        // A pinned point carries the zone along its prescribed displacement; a point held by a
-        // solid keeps it where it started.
-        const V3 shift = e_.pinned[std::size_t(anchor)] ? e_.d(anchor) : V3::Zero();
-        for (int k = 0; k < count; ++k)
-          if (movable(m[k])) e_.x1.row(m[k]) = (e_.p0(m[k]) + shift).transpose();
-      } else {
-        rigid_zone_motion<Scalar>(m, count, false, in.masses, e_.x0, in.dt, e_.x1,
-                                  velocity_scratch_);
-        // A rigid motion that would take a point into a solid: the zone stays where it started.
-        bool blocked = false;
-        for (int k = 0; k < count && !blocked; ++k) blocked = e_.inside_solid(in.colliders, m[k]);
-        if (blocked)
-          for (int k = 0; k < count; ++k) e_.x1.row(m[k]) = e_.x0.row(m[k]);
-      }
-      for (int k = 0; k < count; ++k) moved_[std::size_t(m[k])] = 1;
-      moved += count;
-    }
-    return moved;
-  }
-
-  struct Hit {
-    Pair pair;
-    Scalar toi;
-  };
-
+  int impulse_rounds_ = 12;
+  int projection_rounds_ = 32;
+  int max_rounds_ = 64;
+  SurfaceContactReport last_report_;
   const Ops* ops_ = nullptr;
   const ColliderSet<Scalar>* colliders_ = nullptr;  // the last resolve()'s
-  bool zones_active_ = false;
   SurfaceElements<Scalar> e_;
-  Points<Scalar> velocity_scratch_;
   std::vector<char> moved_;  // points whose end position changed since the last detection
   SurfaceCandidates<Scalar> broad_;
-  std::vector<Hit> hits_;
-  ImpactZones zones_;
-  std::vector<int> members_, starts_;
+  std::vector<SurfaceHit<Scalar>> hits_;
+  ImpactZoneStages<Scalar> zones_;
 };
 
 }  // namespace massspring::contact

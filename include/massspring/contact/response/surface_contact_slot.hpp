@@ -29,10 +29,13 @@ struct SurfaceContactReport {
   int impulses = 0;
   /// @brief Rounds of continuous detection (1 when the proposed motion had no collision).
   int rounds = 0;
-  /// @brief Points moved rigidly in impact zones.
+  /// @brief Points moved rigidly in impact zones (in the last round that moved zones).
   int zone_points = 0;
-  /// @brief False only when the fail-safe ran out of rounds with collisions left (the state is
-  /// then the last one tried; see max_rounds).
+  /// @brief Points the inelastic projection of impact zones moved, summed over its rounds.
+  int projected_points = 0;
+  /// @brief False when the fail-safe ran out of rounds with collisions left, or when a rigid
+  /// zone would have had to move a pinned point off its prescribed motion (the state is then the
+  /// last one tried; see SurfaceContact::max_rounds()).
   bool resolved = true;
 };
 
