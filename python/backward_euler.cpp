@@ -25,7 +25,7 @@ void bind_backward_euler(py::module_& m) {
                      "h^2 k)) per point, k its springs' summed stiffness (0: at the end of the "
                      "step; 1 suits dt = 1/30).")
       .def_readwrite("energy_growth", &Options::energy_growth,
-                     "A step whose energy passes E(0) + energy_growth S is refused and reported "
+                     "A step whose energy passes its start energy + energy_growth (S + S_c) is refused and reported "
                      "(StepReport.blew_up); >= 0, default 100, 0: off.");
 
   py::class_<Solver> c(m, "BackwardEuler",

@@ -76,7 +76,7 @@ void bind_fast_mass_spring(py::module_& m) {
                      "(m + dt^2 k)) / dt^2 per point, k its springs' summed stiffness (default "
                      "1; 0: contact only at the end of the step).")
       .def_readwrite("energy_growth", &Options::energy_growth,
-                     "A step whose energy passes E(0) + energy_growth S is refused and reported "
+                     "A step whose energy passes its start energy + energy_growth (S + S_c) is refused and reported "
                      "(StepReport.blew_up); >= 0, default 100, 0: off.")
       .def_static("reference", &Options::reference,
                   "The assignment's plain iteration: 50 iterations from the current "

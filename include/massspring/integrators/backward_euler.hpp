@@ -64,8 +64,8 @@ struct BackwardEulerOptions {
   /// at most, to the same test.
   Scalar contact_weight = Scalar(0);
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
-  /// E(0) + energy_growth S, E(0) and S taken at precompute() (integrators/detail/
-  /// energy_bound.hpp), is reported as blown up (StepReport::blew_up) and not committed. Finite
+  /// the step's start energy by more than energy_growth (S + S_c), S the scale taken at
+  /// precompute() and S_c the colliders' (integrators/detail/energy_bound.hpp), is reported as blown up (StepReport::blew_up) and not committed. Finite
   /// and >= 0; default 100; 0 turns the check off.
   double energy_growth = 100;
 };
@@ -430,7 +430,7 @@ class BackwardEuler {
   std::vector<char> touches_;
   Vector<Scalar> dx_;
   detail::JacobianAssembly<System> assembly_;
-  detail::EnergyBound<System> energy_bound_;  // E(0) + energy_growth S, taken at precompute()
+  detail::EnergyBound<System> energy_bound_;  // S taken at precompute()
   LinearSolver<Storage, Scalar> solver_;
 };
 

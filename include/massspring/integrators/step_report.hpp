@@ -49,7 +49,8 @@ struct StepReport {
   /// (not numerically positive definite). Nothing was changed; the next step tries again.
   bool factorization_failed = false;
   /// @brief True when the step's end state had more energy than the integrator's bound,
-  /// E(0) + energy_growth S (integrators/detail/energy_bound.hpp: an energy blow-up), or a
+  /// the start energy + energy_growth (S + S_c) (integrators/detail/energy_bound.hpp: an energy
+  /// blow-up), or a
   /// DivergenceGuard found the total energy after the step beyond its limit. Nothing was
   /// changed (the guard restores the state from before the step).
   bool blew_up = false;

@@ -42,7 +42,8 @@ class SymplecticEuler {
   void set_swap_buffers(bool swap) { s_.swap_buffers_ = swap; }
 
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
-  /// E(0) + growth S, E(0) and S taken at precompute() (integrators/detail/energy_bound.hpp), is
+  /// the step's start energy by more than growth (S + S_c), S the scale taken at precompute() and
+  /// S_c the colliders' (integrators/detail/energy_bound.hpp), is
   /// reported as blown up (StepReport::blew_up) and not committed. growth finite and >= 0;
   /// default 0: off, as an explicit scheme past its stable step is expected to gain energy (wrap
   /// the steps in a DivergenceGuard, as massspring-simulate does, or set 100, the implicit

@@ -26,12 +26,14 @@ namespace massspring::detail {
 ///    without, copied (the system's arrays keep their memory, which Python's views of them need).
 /// Sets report.finite, report.blew_up and the contact fields. Allocates nothing once the contact's
 /// work arrays have grown. `collider_friction` false: the colliders act as frictionless
-/// (FastMassSpring's contact term applied their friction inside the iteration).
+/// (FastMassSpring's contact term applied their friction inside the iteration). `snap_pins`
+/// false skips step 1 (FastMassSpring's penalty pins, whose solve leaves each pinned point where
+/// its stiff spring holds it; step 3 still runs when there is a collision response).
 template <class System>
 void commit_step(System& system, typename System::PointsType& x_end,
                  typename System::PointsType& v_end, typename System::Scalar dt, StepReport& report,
                  const EnergyBound<System>& bound, bool collider_friction = true,
-                 bool swap_buffers = false) {
+                 bool swap_buffers = false, bool snap_pins = true) {
   const auto& x0 = system.positions();
   const auto& pinned = system.pinned();
   const auto pin = [&] {
@@ -41,7 +43,7 @@ void commit_step(System& system, typename System::PointsType& x_end,
       v_end.row(i) = (x_end.row(i) - x0.row(i)) / dt;
     }
   };
-  pin();
+  if (snap_pins) pin();
   if (system.has_collision_response()) {
     contact::handle_collisions(system, x0, system.velocities(), x_end, v_end, dt,
                                collider_friction);

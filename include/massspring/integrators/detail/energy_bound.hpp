@@ -1,8 +1,10 @@
 #pragma once
 /// @file
 /// @brief The energy bound every integrator checks before it commits a step: a proposed end state
-/// whose energy exceeds E(0) + growth S is a blow-up, reported and not committed.
+/// whose energy exceeds the step's start energy by more than growth times the scene's energy
+/// scale is a blow-up, reported and not committed.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -40,56 +42,91 @@ double energy_scale(const System& system, double& energy) {
   return scale;
 }
 
-/// @brief A step's energy limit, taken when the integrator is prepared: a proposed end state
-/// (x, v) blows up when
+/// @brief A step's energy limit: a proposed end state (x, v) from the start state (x0, v0) the
+/// system holds blows up when
 ///
-///     K_free(v) + U(x) > E(0) + growth S
+///     E(x, v) > E(x0, v0) + growth (S + S_c),   E(x, v) = K_free(v) + U(x)
 ///
 /// with K_free the kinetic energy of the points that are not pinned (a pin's velocity is its
 /// target's, set by the caller), U the potential of the springs and of every force term that has
-/// one (forces/evaluate.hpp), and E(0), S the energy and scale of energy_scale() at reset(). An
-/// integrator that is stable never passes it: implicit Euler and the local-global solver only
-/// dissipate, and moving pins add work bounded by the springs they stretch. `growth` 0 turns the
-/// check off; the limit is +infinity when E(0) or S is not finite.
+/// one (forces/evaluate.hpp), S the scale of energy_scale() taken at reset(), and
+/// S_c = 2 M V^2 the most kinetic energy the colliders can give in one step (M the total mass, V
+/// the largest speed of a collider's surface over the points' bounding box, |v| + |w| r, r the
+/// farthest corner from its reference point; 2 V for a full rebound). A step of an integrator that
+/// is stable never passes it: implicit Euler and the local-global solver only dissipate, and
+/// moving pins and colliders add, per step, work bounded by the springs they stretch and by S_c.
+/// The limit is per step, so a driver that adds energy slowly for a long time (a lift, a
+/// conveyor) never trips it, while a blow-up, whose energy grows by a factor each step, does.
+/// `growth` 0 turns the check off, as does a scale that is not finite.
 ///
-/// Cost of exceeded(): one pass over the springs and the terms' energies. Allocates nothing.
+/// Cost of exceeded(): two passes over the springs and the terms' energies, one over the points.
+/// Allocates nothing.
 template <class System>
 class EnergyBound {
  public:
   using PointsType = typename System::PointsType;
 
-  /// @brief Takes E(0) and S from the system's current state (allocates).
+  /// @brief Takes S from the system's current state (allocates).
   void reset(const System& system, double growth) {
     growth_ = growth;
-    if (!(growth > 0)) {
-      limit_ = std::numeric_limits<double>::infinity();
-      return;
-    }
+    scale_ = 0;
+    if (!(growth > 0)) return;
     double energy = 0;
-    const double scale = energy_scale(system, energy);
-    limit_ = std::isfinite(energy) && std::isfinite(scale)
-                 ? energy + growth * scale
-                 : std::numeric_limits<double>::infinity();
+    scale_ = energy_scale(system, energy);
+    if (!std::isfinite(energy) || !std::isfinite(scale_)) growth_ = 0;
   }
 
-  /// @brief True when the state (x, v), #points by 3, has more energy than limit().
+  /// @brief True when the state (x, v), #points by 3, has more energy than limit(system).
   [[nodiscard]] bool exceeded(const System& system, const PointsType& x,
                               const PointsType& v) const {
-    if (!(growth_ > 0) || std::isinf(limit_)) return false;
+    if (!(growth_ > 0)) return false;
+    return !(energy(system, x, v) <= limit(system));  // NaN included
+  }
+
+  /// @brief The most energy [J] a step from the system's current state may end with:
+  /// E(x0, v0) + growth (S + S_c); +infinity when the check is off.
+  [[nodiscard]] double limit(const System& system) const {
+    if (!(growth_ > 0)) return std::numeric_limits<double>::infinity();
+    return energy(system, system.positions(), system.velocities()) +
+           growth_ * (scale_ + collider_scale(system));
+  }
+
+ private:
+  static double energy(const System& system, const PointsType& x, const PointsType& v) {
     double kinetic = 0;
     const auto& masses = system.masses();
     for (Eigen::Index i = 0; i < x.rows(); ++i)
       if (!system.is_pinned(int(i))) kinetic += double(masses(i)) * double(v.row(i).squaredNorm());
-    const double energy = 0.5 * kinetic + double(potential_energy(system, x));
-    return !(energy <= limit_);  // NaN included
+    return 0.5 * kinetic + double(potential_energy(system, x));
   }
 
-  /// @brief E(0) + growth S [J]; +infinity when the check is off.
-  [[nodiscard]] double limit() const { return limit_; }
+  // S_c = 2 M V^2 [J] (see the class).
+  static double collider_scale(const System& system) {
+    const auto& colliders = system.colliders();
+    if (colliders.size() == 0 || system.num_points() == 0) return 0;
+    const auto& x = system.positions();
+    const auto low = x.colwise().minCoeff(), high = x.colwise().maxCoeff();
+    double speed = 0;
+    for (int c = 0; c < colliders.size(); ++c) {
+      const auto& collider = colliders[c];
+      double reach = 0;  // farthest corner of the box from the collider's reference point [m]
+      for (int corner = 0; corner < 8; ++corner) {
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double coordinate = double((corner >> k) & 1 ? high(k) : low(k));
+          const double d = coordinate - double(collider.translation()(k));
+          d2 += d * d;
+        }
+        reach = std::max(reach, std::sqrt(d2));
+      }
+      speed = std::max(speed, double(collider.velocity().norm()) +
+                                  double(collider.angular_velocity().norm()) * reach);
+    }
+    return 2 * double(system.masses().sum()) * speed * speed;
+  }
 
- private:
   double growth_ = 0;
-  double limit_ = std::numeric_limits<double>::infinity();
+  double scale_ = 0;
 };
 
 }  // namespace massspring::detail

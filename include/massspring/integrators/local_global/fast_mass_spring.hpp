@@ -366,8 +366,10 @@ class FastMassSpring {
         v_end_(i, c) = velocity;
       }
     }
-    // Friction was the contact term's, inside the iteration: not applied a second time.
-    detail::commit_step(system, x_end_, v_end_, dt_, report, energy_bound_, !contact_.active());
+    // Friction was the contact term's, inside the iteration: not applied a second time. Penalty
+    // pins stay where the solve left them unless a collision response runs.
+    detail::commit_step(system, x_end_, v_end_, dt_, report, energy_bound_, !contact_.active(),
+                        false, pins_ == PinMode::Exact || system.has_collision_response());
     return report;
   }
 

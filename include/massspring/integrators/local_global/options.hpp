@@ -138,10 +138,10 @@ struct FastMassSpringOptions {
   /// order changes rounding only, not the solution.
   FillOrdering ordering = FillOrdering::Auto;
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
-  /// E(0) + energy_growth S, E(0) and S taken at precompute() (integrators/detail/
-  /// energy_bound.hpp), is reported as blown up (StepReport::blew_up) and not committed: the
+  /// the step's start energy by more than energy_growth (S + S_c), S the scale taken at
+  /// precompute() and S_c the colliders' (integrators/detail/energy_bound.hpp), is reported as blown up (StepReport::blew_up) and not committed: the
   /// system keeps the state before the step. Finite and >= 0; default 100; 0 turns the check off.
-  /// Costs one pass over the springs per step.
+  /// Costs two passes over the springs per step.
   double energy_growth = 100;
 
   /// @brief The plain iteration of Liu et al. 2013 as the assignment states it: 50 iterations
