@@ -10,7 +10,8 @@ Oracles: the same force built in.
   differences first.
 Errors: a wrong shape raises massspring.Error naming the term from step(), a NaN force is a
 step that is not finite; either way the system keeps its state. BackwardEuler refuses a term
-without a Jacobian, naming both."""
+without a Jacobian, naming both. Two threads stepping their own systems with Python terms (the
+GIL taken for each callback) get the trajectories of one thread alone."""
 
 import numpy as np
 import pytest
@@ -335,3 +336,29 @@ def test_a_copied_system_keeps_the_term():
     t.add_force(ms.Gravity(G))
     x1, _ = run(t, backward_euler(ms.BackwardEulerMode.Linearized), steps=5)
     assert np.array_equal(x0, x1)
+
+
+def test_two_threads_step_systems_with_python_terms():
+    """The steps run without the GIL and take it for each callback: two threads, each stepping
+    its own system, finish (no deadlock) with the trajectory of one thread alone."""
+    import threading
+
+    def stepped(results, k):
+        s = chain()
+        s.add_force(ms.PythonForce(tether_force, jacobian=tether_jacobian_dense))
+        s.add_force(ms.PythonForce(python_gravity(s), jacobian=zero_jacobian))
+        solver = ms.RK4() if k == 0 else backward_euler(ms.BackwardEulerMode.Newton)
+        results[k] = run(s, solver, steps=30)[0]
+
+    alone = [None, None]
+    for k in range(2):
+        stepped(alone, k)
+    together = [None, None]
+    threads = [threading.Thread(target=stepped, args=(together, k)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=120)
+        assert not t.is_alive()
+    for k in range(2):
+        assert np.array_equal(together[k], alone[k])
