@@ -1,7 +1,12 @@
 """`pip install .` (docs/python.md): the package `massspring`, its compiled module built by the
 project's own CMake (python/CMakeLists.txt, target massspring_python) and its pure-Python parts.
 
-    pip install --no-build-isolation .        # Debian's setuptools and wheel; nothing downloaded
+    python3 -m venv --system-site-packages ENV         # sees Debian's numpy, setuptools, wheel
+    ENV/bin/pip install -v --no-build-isolation .      # nothing downloaded; -v: CMake's progress
+
+Without --no-build-isolation pip installs setuptools and wheel from the package index into a
+build environment of its own first, which fails offline. Without -v pip shows only "still
+running..." while the module compiles (minutes without a compiler cache).
 
 build_ext configures CMake in MASSSPRING_PIP_BUILD_DIR (default: build-pip in the checkout, kept
 between installs so a second one rebuilds nothing) with the Release build's options, builds only
@@ -22,6 +27,7 @@ import re
 import shlex
 import subprocess
 import sys
+import time
 
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
@@ -71,9 +77,14 @@ class CMakeBuild(build_ext):
         ] + shlex.split(os.environ.get("MASSSPRING_CMAKE_ARGS", ""))
         jobs = os.environ.get("MASSSPRING_BUILD_JOBS", str(os.cpu_count() or 1))
         build = [cmake, "--build", build_dir, "--target", ext.target, "-j", jobs]
+        print(f"massspring: CMake builds the target {ext.target} only (no tests, examples, "
+              f"benchmarks or tools) in {build_dir}, {jobs} jobs: about 5 minutes of one core "
+              "when it compiles every file, seconds when ccache holds them", flush=True)
+        started = time.monotonic()
         for command in (configure, build):
             print(" ".join(shlex.quote(c) for c in command), flush=True)
             subprocess.run(command, check=True)
+        print(f"massspring: {ext.target} built in {time.monotonic() - started:.0f} s", flush=True)
         built = os.path.join(package_root, *ext.name.split(".")[:-1])
         suffix = os.path.basename(target)
         if not os.path.exists(os.path.join(built, suffix)):

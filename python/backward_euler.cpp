@@ -3,6 +3,7 @@
 // buffer), so the views of them stay valid.
 
 #include "integrator.hpp"
+#include "python_force.hpp"
 
 namespace massspring::python {
 
@@ -34,7 +35,10 @@ void bind_backward_euler(py::module_& m) {
       .def(py::init<Options>(), py::arg("options"))
       .def_readwrite("options", &Solver::options, "The options (this solver's own).");
   bind_contact_duals<Solver>(c);
-  bind_integrator_calls<Solver>(m, c, [](Solver& s, System& system) { return s.step(system); });
+  // A PythonForce without a jacobian is refused: the solve needs every term's dF/dx and dF/dv.
+  bind_integrator_calls<Solver>(
+      m, c, [](Solver& s, System& system) { return s.step(system); },
+      [](const System& system) { return python_terms_without_jacobian(system, "BackwardEuler"); });
 }
 
 }  // namespace massspring::python

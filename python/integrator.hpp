@@ -3,6 +3,8 @@
 /// @brief What every integrator's binding shares: precompute(system, dt) and step(system), with the
 /// GIL released while the C++ runs (two Python threads step two systems at once).
 
+#include <string>
+
 #include "bindings.hpp"
 
 namespace massspring::python {
@@ -11,14 +13,18 @@ namespace massspring::python {
 /// (the guard must be bound first). `Step` is how the binding steps
 /// (the integrator's own step(), or another call on it).
 /// step() and precompute() run without the GIL; a second thread's call on the same system or
-/// integrator meanwhile raises massspring.Error (InUse).
-template <class Integrator, class Class, class Step>
-void bind_integrator_calls(py::module_& m, Class& c, Step step) {
+/// integrator meanwhile raises massspring.Error (InUse). `Refuse` (system -> message) is asked
+/// before precompute() and step(): a non-empty message is raised as massspring.Error.
+template <class Integrator, class Class, class Step, class Refuse = std::string (*)(const System&)>
+void bind_integrator_calls(
+    py::module_& m, Class& c, Step step,
+    Refuse refuse = [](const System&) { return std::string(); }) {
   using Guard = DivergenceGuard<System>;
   c.def(
        "precompute",
-       [](Integrator& integrator, const System& system, double dt) {
+       [refuse](Integrator& integrator, const System& system, double dt) {
          const InUse busy({&integrator, &system}, "precompute");
+         if (const std::string why = refuse(system); !why.empty()) throw Error(why);
          const py::gil_scoped_release release;
          integrator.precompute(system, dt);
        },
@@ -27,8 +33,9 @@ void bind_integrator_calls(py::module_& m, Class& c, Step step) {
        "does). Call it again after the number of points changes. The GIL is released.")
       .def(
           "step",
-          [step](Integrator& integrator, System& system) {
+          [step, refuse](Integrator& integrator, System& system) {
             const InUse busy({&integrator, &system}, "step");
+            if (const std::string why = refuse(system); !why.empty()) throw Error(why);
             const py::gil_scoped_release release;
             return step(integrator, system);
           },
@@ -43,13 +50,14 @@ void bind_integrator_calls(py::module_& m, Class& c, Step step) {
   py::class_<Guard> guard = py::reinterpret_borrow<py::class_<Guard>>(m.attr("DivergenceGuard"));
   guard.def(
       "step",
-      [step](Guard& g, Integrator& integrator, System& system) {
+      [step, refuse](Guard& g, Integrator& integrator, System& system) {
         struct Bound {  // what DivergenceGuard::step calls: integrator.step(system)
           Integrator& i;
           const Step& s;
           StepReport step(System& system) { return s(i, system); }
         } bound{integrator, step};
         const InUse busy({&g, &integrator, &system}, "step");
+        if (const std::string why = refuse(system); !why.empty()) throw Error(why);
         const py::gil_scoped_release release;
         return g.step(bound, system);
       },

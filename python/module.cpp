@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "bindings.hpp"
+#include "python_force.hpp"
 
 namespace massspring::python {
 
@@ -93,6 +94,7 @@ PYBIND11_MODULE(_core, m) {
   bind_errors(m);
   bind_system(m);
   bind_forces(m);
+  bind_python_force(m);  // after every other add_force overload
   bind_colliders(m);
   bind_step_report(m);
   bind_diagnostics(m);  // DivergenceGuard, before the integrators add its step() for each

@@ -1,7 +1,9 @@
 """`pip install .` from the checkout, in a fresh virtual environment that sees Debian's packages
 (python3 -m venv --system-site-packages), with Debian's setuptools and no build isolation and no
 index (nothing downloaded): the package `massspring` is installed, compiled module and pure-Python
-parts, and imports from outside the checkout without PYTHONPATH.
+parts, and imports from outside the checkout without PYTHONPATH. As the docs say to run it
+(`pip install -v`): the output shows what CMake builds and its progress, and CMake configures the
+module only (no tests, examples, benchmarks, tools or reference solver in its build folder).
 
 The CMake build goes to MASSSPRING_PIP_BUILD_DIR (ctest: the build folder's name + "-pip", beside
 it, so that its compile commands equal the build's and the compiler cache serves them); the venv
@@ -10,6 +12,7 @@ to that folder's venv/, made afresh each time. The test prints how long the inst
 Skipped when the Python running it has no venv or pip module (Debian: python3-venv, python3-pip)."""
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -34,12 +37,21 @@ def test_pip_install_builds_and_installs_the_package(tmp_path):
     env["MASSSPRING_PIP_BUILD_DIR"] = build
     env["PIP_NO_INDEX"] = "1"  # never download
     started = time.monotonic()
-    done = subprocess.run([python, "-m", "pip", "install", "--no-build-isolation", "--no-deps",
-                           "--no-index", SOURCE_DIR],
+    done = subprocess.run([python, "-m", "pip", "install", "-v", "--no-build-isolation",
+                           "--no-deps", "--no-index", SOURCE_DIR],
                           env=env, cwd=tmp_path, capture_output=True, text=True, timeout=1800)
     seconds = time.monotonic() - started
     print(f"pip install took {seconds:.1f} s")
     assert done.returncode == 0, done.stdout[-4000:] + done.stderr[-4000:]
+    # -v shows (on stderr) setup.py's note, CMake's progress and the time it took
+    shown = done.stdout + done.stderr
+    assert "massspring: CMake builds the target massspring_python only" in shown, shown[-4000:]
+    assert "Built target massspring_python" in shown, shown[-4000:]
+    assert re.search(r"massspring: massspring_python built in \d+ s", shown), shown[-4000:]
+    # only the module's folders were configured
+    for folder in ("tests", "examples", "benchmarks", "tools", "reference", "fuzz"):
+        assert not os.path.exists(os.path.join(build, folder)), folder
+    assert os.path.isdir(os.path.join(build, "python"))
 
     check = ("import os, massspring, massspring.sweep, massspring._core;"
              "import numpy as np;"

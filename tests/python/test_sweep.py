@@ -7,13 +7,17 @@
   the lost runs done by the other worker;
 - a rerun on the finished file runs nothing (`python3 -m massspring.sweep`, the file unchanged);
 - a spec with a bad value is refused before any run, naming the entry (no file written);
-- a run that diverges and one that fails are recorded with their messages, the others done.
+- a run that diverges and one that fails are recorded with their messages, the others done;
+- Dask's own output stays off stderr (its log lines, a worker's traceback) when a worker of the
+  sweep's local cluster is killed and on Ctrl-C, unless `verbose`; the logging set-up and the
+  environment are as they were afterwards.
 
 Skipped, with the reason, when Dask or h5py is absent (Debian: python3-dask python3-distributed
 python3-h5py; scripts/setup.sh installs them)."""
 
 import csv
 import json
+import logging
 import os
 import signal
 import subprocess
@@ -278,3 +282,76 @@ def test_min_time_repeats_a_short_run_and_keeps_its_first_trajectory(tmp_path):
         store.write(run, repeated)
     with h5py.File(tmp_path / "results.h5", "r") as f:
         assert np.array_equal(f["runs"][run.id]["loop_seconds"][()], loops)
+
+
+def long_runs(folder, count, frames):
+    """A spec of `count` runs of a 20 x 20 cloth, each some tenths of a second to seconds."""
+    runs = [{"generate": "cloth:20x20", "iterations": 10, "frames": frames + k}
+            for k in range(count)]
+    return write_spec(folder, runs=runs, grid={})
+
+
+@pytest.mark.parametrize("verbose", [False, True])
+def test_dask_output_stays_off_stderr_when_a_worker_is_killed(tmp_path, capfd, caplog, verbose):
+    """The sweep's own local cluster (2 workers); the worker that sent the first result is killed.
+    Dask's nanny in this process logs `distributed.nanny - WARNING - Restarting worker` (a log
+    record, seen by caplog: pytest holds the stream Dask's handler writes to), and the worker
+    processes write to the file descriptor 2 they inherit (seen by capfd): both with verbose
+    only."""
+    spec = long_runs(str(tmp_path), 4, 400)
+    out = str(tmp_path / "results.h5")
+    distributed_level = logging.getLogger("distributed").level
+    client_level = logging.getLogger("distributed.client").level
+    environment = os.environ.get("DASK_LOGGING__DISTRIBUTED")
+    killed = []
+
+    def kill_the_sender(run, result):
+        if not killed:
+            killed.append(result["pid"])
+            os.kill(result["pid"], signal.SIGKILL)
+
+    capfd.readouterr()
+    caplog.clear()
+    summary = sweep(spec, out, workers=2, progress=False, on_result=kill_the_sender,
+                    verbose=verbose)
+    err = capfd.readouterr().err
+    assert killed and summary["ran"] == 4 and summary["ok"] == 4, summary
+    dask_records = [f"{r.name} - {r.levelname} - {r.getMessage()}" for r in caplog.records
+                    if r.name.startswith("distributed") and r.levelno >= logging.WARNING]
+    if verbose:
+        assert "distributed.nanny - WARNING - Restarting worker" in dask_records, dask_records
+    else:
+        assert not dask_records, dask_records
+        assert "distributed." not in err and "Traceback" not in err, err
+    # the caller's logging set-up and environment, as they were
+    assert logging.getLogger("distributed").level == distributed_level
+    assert logging.getLogger("distributed.client").level == client_level
+    assert os.environ.get("DASK_LOGGING__DISTRIBUTED") == environment
+
+
+def test_ctrl_c_prints_the_sweeps_own_words_only(tmp_path):
+    """Ctrl-C in a terminal interrupts the whole process group, the workers too: the command
+    exits 130 with its progress and its own message, and no Dask log line or worker traceback."""
+    spec = long_runs(str(tmp_path), 6, 1500)
+    out = str(tmp_path / "results.h5")
+    command = subprocess.Popen([sys.executable, "-m", "massspring.sweep", spec, "--out", out,
+                                "--workers", "2"], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        lines = []
+        for line in command.stderr:  # the progress bar's first line: a run is committed
+            lines.append(line)
+            if " 1/6 runs" in line:
+                break
+        os.killpg(command.pid, signal.SIGINT)
+        stdout, rest = command.communicate(timeout=300)
+    finally:
+        if command.poll() is None:
+            os.killpg(command.pid, signal.SIGKILL)
+            command.wait()
+    stderr = "".join(lines) + rest
+    assert command.returncode == 130, stderr
+    assert "massspring.sweep: interrupted; the runs committed so far are in" in stderr
+    foreign = [line for line in stderr.splitlines()
+               if line and not line.startswith(("[", "massspring.sweep: "))]
+    assert not foreign, stderr

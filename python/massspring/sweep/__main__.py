@@ -27,6 +27,9 @@ def main(argv=None):
     parser.add_argument("--check", action="store_true",
                         help="check the spec and list its runs; run nothing")
     parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
+    parser.add_argument("--verbose", action="store_true",
+                        help="also show Dask's own log lines (its warnings and errors, e.g. a "
+                             "worker restarted) and the local workers' stderr")
     args = parser.parse_args(argv)
     if not args.out and not args.check:
         parser.error("--out FILE is needed (the HDF5 results file)")
@@ -60,7 +63,7 @@ def main(argv=None):
         from .driver import sweep  # noqa: PLC0415
 
         sweep(args.spec, args.out, scheduler=args.scheduler, workers=args.workers,
-              redo_failed=args.redo_failed, progress=not args.quiet)
+              redo_failed=args.redo_failed, progress=not args.quiet, verbose=args.verbose)
     except SpecError as e:
         print(f"massspring.sweep: {e}", file=sys.stderr)
         return 1

@@ -9,6 +9,7 @@ that bound, or a result lost with its worker before it was fetched) is submitted
 most; then the run is recorded as failed with Dask's message. A run that raises or diverges is
 recorded with its message and the others go on."""
 
+import contextlib
 import importlib
 import json
 import os
@@ -18,6 +19,10 @@ import massspring as ms
 
 from . import runner, spec as specs
 from .progress import Progress
+from .quiet import dask_logs_silenced
+
+# The workers' preload that keeps their stderr off the terminal (quiet.py).
+quiet_module = __name__.rpartition(".")[0] + ".quiet"
 
 # Parameters massspring-simulate has an option for (the option is --NAME with dashes).
 _CLI_OPTIONS = {
@@ -99,7 +104,7 @@ def check(spec_path):
 
 
 def sweep(spec_path, out, scheduler=None, workers=None, client=None, redo_failed=False,
-          retries=1, progress=True, on_result=None):
+          retries=1, progress=True, on_result=None, verbose=False):
     """Runs the sweep of the spec file `spec_path` into the HDF5 file `out`.
 
     @param scheduler    an existing Dask scheduler's address (tcp://HOST:8786), used as it is;
@@ -109,6 +114,9 @@ def sweep(spec_path, out, scheduler=None, workers=None, client=None, redo_failed
     @param redo_failed  run again the runs the file records as failed, diverged or skipped
     @param retries      Dask's retries of a task that raised (a run itself never raises)
     @param on_result    called as on_result(run, result) after each run is committed
+    @param verbose      also show Dask's own log lines (Dask's default: its warnings and errors)
+                        and the local cluster's workers' stderr; otherwise only the sweep's
+                        messages are printed (quiet.py), the logging set-up restored afterwards
     @return {"runs": total, "skipped": already in the file, "ran": ..., "ok", "not_ok"}"""
     from .store import Store  # noqa: PLC0415: h5py, needed here only
 
@@ -135,60 +143,67 @@ def sweep(spec_path, out, scheduler=None, workers=None, client=None, redo_failed
 
         from dask.distributed import Client, LocalCluster, as_completed  # noqa: PLC0415
 
-        cluster = own_client = None
-        try:
-            if client is None:
-                if scheduler:
-                    own_client = client = Client(scheduler)
-                else:
-                    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
-                                           threads_per_worker=1, processes=True,
-                                           dashboard_address=None)
-                    own_client = client = Client(cluster)
+        # Dask's own output silenced (quiet.py) until the cluster is closed, unless verbose
+        with contextlib.nullcontext() if verbose else dask_logs_silenced():
+            cluster = own_client = None
+            try:
+                if client is None:
+                    if scheduler:
+                        own_client = client = Client(scheduler)
+                    else:
+                        # No dashboard; the scheduler's HTTP server (Dask's health and
+                        # metrics routes) on a free port, not 8787: two sweeps at once on one
+                        # machine would otherwise collide there (and Dask warn about it).
+                        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
+                                               threads_per_worker=1, processes=True,
+                                               dashboard_address=None,
+                                               scheduler_kwargs={"dashboard_address": ":0"},
+                                               preload=[] if verbose else [quiet_module])
+                        own_client = client = Client(cluster)
 
-            def submit(run):
-                # The scene's bytes travel inside the task, so they live as long as the task
-                # does (scattered data dies with the worker holding it, and its tasks with it).
-                bundle = scenes.get(run)[1] if run.scene_path is not None else None
-                future = client.submit(runner.run, run.parameters, bundle, pure=False,
-                                       retries=retries,
-                                       key=f"massspring-{run.id}-{uuid.uuid4().hex[:8]}")
-                futures[future.key] = (future, run)
-                return future
+                def submit(run):
+                    # The scene's bytes travel inside the task, so they live as long as the task
+                    # does (scattered data dies with the worker holding it, and its tasks with it).
+                    bundle = scenes.get(run)[1] if run.scene_path is not None else None
+                    future = client.submit(runner.run, run.parameters, bundle, pure=False,
+                                           retries=retries,
+                                           key=f"massspring-{run.id}-{uuid.uuid4().hex[:8]}")
+                    futures[future.key] = (future, run)
+                    return future
 
-            futures, attempts = {}, {}
-            pending = as_completed([submit(run) for run in todo])
-            bar = Progress(len(todo), enabled=progress)
-            for future in pending:
-                run = futures.pop(future.key)[1]
-                try:
-                    result = future.result()
-                except Exception as e:  # noqa: BLE001: a lost task is recorded, not raised
-                    # runner.run never raises: the cluster lost the task (its workers died more
-                    # often than allowed-failures, or it was cancelled). Submitted again, twice
-                    # at most.
-                    attempts[run.id] = attempts.get(run.id, 0) + 1
-                    if attempts[run.id] <= 2:
-                        future.release()
-                        pending.add(submit(run))
-                        continue
-                    result = {"status": "failed",
-                              "message": f"the cluster could not run it: {type(e).__name__}: {e}"}
-                future.release()
-                args = command_line(run)
-                store.write(run, result, json.dumps(["massspring-simulate"] + args)
-                            if args else "")
-                ok = result["status"] == "ok"
-                summary["ran"] += 1
-                summary["ok" if ok else "not_ok"] += 1
-                bar.advance(ok)
-                if on_result is not None:
-                    on_result(run, result)
-        finally:
-            if own_client is not None:
-                own_client.close()
-            if cluster is not None:
-                cluster.close()
+                futures, attempts = {}, {}
+                pending = as_completed([submit(run) for run in todo])
+                bar = Progress(len(todo), enabled=progress)
+                for future in pending:
+                    run = futures.pop(future.key)[1]
+                    try:
+                        result = future.result()
+                    except Exception as e:  # noqa: BLE001: a lost task is recorded, not raised
+                        # runner.run never raises: the cluster lost the task (its workers died more
+                        # often than allowed-failures, or it was cancelled). Submitted again, twice
+                        # at most.
+                        attempts[run.id] = attempts.get(run.id, 0) + 1
+                        if attempts[run.id] <= 2:
+                            future.release()
+                            pending.add(submit(run))
+                            continue
+                        result = {"status": "failed",
+                                  "message": f"the cluster could not run it: {type(e).__name__}: {e}"}
+                    future.release()
+                    args = command_line(run)
+                    store.write(run, result, json.dumps(["massspring-simulate"] + args)
+                                if args else "")
+                    ok = result["status"] == "ok"
+                    summary["ran"] += 1
+                    summary["ok" if ok else "not_ok"] += 1
+                    bar.advance(ok)
+                    if on_result is not None:
+                        on_result(run, result)
+            finally:
+                if own_client is not None:
+                    own_client.close()
+                if cluster is not None:
+                    cluster.close()
     if progress:
         print(f"massspring.sweep: {summary['ran']} runs done ({summary['ok']} ok, "
               f"{summary['not_ok']} not: see their \"message\"), {summary['skipped']} were in "
