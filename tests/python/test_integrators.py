@@ -17,8 +17,12 @@ def test_fast_mass_spring_options_reach_the_solver():
     s.add_force(ms.Gravity([0, -9.8, 0]))
     solver = ms.FastMassSpring()
     o = solver.options
-    assert (o.iterations, o.tolerance, o.pins, o.acceleration) == (
-        50, 0.0, ms.PinMode.Exact, ms.Acceleration.None_)
+    assert (o.iterations, o.tolerance, o.pins, o.acceleration, o.initial_guess,
+            o.contact_weight, o.energy_growth) == (
+        10, 0.0, ms.PinMode.Exact, ms.Acceleration.Anderson, ms.InitialGuess.Inertial, 1.0, 100.0)
+    r = ms.FastMassSpringOptions.reference()
+    assert (r.iterations, r.acceleration, r.initial_guess, r.contact_weight) == (
+        50, ms.Acceleration.None_, ms.InitialGuess.Current, 0.0)
     solver.options.iterations = 7  # the solver's own options, changed in place
     assert solver.options.iterations == 7 and o.iterations == 7
     solver.precompute(s, 1 / 30)

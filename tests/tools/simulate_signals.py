@@ -112,7 +112,8 @@ def diverge(simulate, work):
     check(result.returncode == 2, f"exit status {result.returncode}, expected 2")
     # Either check may stop it first: the energy guard or a non-finite value.
     match = re.search(r"massspring-simulate: step (\d+): (?:the step produced a non-finite state|"
-                      r"the total energy passed the divergence limit \([^)]*\)); "
+                      r"the total energy passed the divergence limit \([^)]*\), or the step gained more "
+                      r"than [0-9.e+]+ x the scale, the integrator's own bound); "
                       r"stopped with the last (?:finite|good) state \(steps 0\.\.(\d+) written\)",
                       result.stderr)
     check(match is not None, f"message: {result.stderr!r}")

@@ -502,10 +502,11 @@ inline int exit_status(const Config& c, const Plan& p, const Outcome& o, bool fa
   if (o.diverged_at > 0 && o.blew_up) {
     std::fprintf(stderr,
                  "massspring-simulate: step %lld: the total energy passed the divergence limit "
-                 "(%.6g J: the initial energy + %g x the scale %.6g J); stopped with the last good "
+                 "(%.6g J: the initial energy + %g x the scale %.6g J), or the step gained more "
+                 "than %g x the scale, the integrator's own bound; stopped with the last good "
                  "state (steps %s%lld written)\n",
-                 o.diverged_at, o.guard_limit, c.guard_growth, o.guard_scale, range.c_str(),
-                 o.diverged_at - 1);
+                 o.diverged_at, o.guard_limit, c.guard_growth, o.guard_scale, c.guard_growth,
+                 range.c_str(), o.diverged_at - 1);
     print_hint();
     return kExitDiverged;
   }

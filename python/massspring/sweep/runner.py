@@ -315,7 +315,8 @@ def run(parameters, bundle=None):
                     result["message"] = (
                         f"step {step}: the total energy passed the divergence limit "
                         f"({guard.limit:.6g} J: the initial energy + {growth:g} x the scale "
-                        f"{guard.scale:.6g} J); stopped with the last good state")
+                        f"{guard.scale:.6g} J), or the step gained more than {growth:g} x the "
+                        "scale, the integrator's own bound; stopped with the last good state")
                 elif not report.contact_resolved:
                     result["message"] = (f"step {step}: surface contact left a crossing its "
                                          "rounds could not remove; stopped with the last good "
