@@ -20,21 +20,14 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from checks import check, fail  # noqa: E402  (tests/tools/checks.py, shared)
+
 DEMO_FILES = ["trajectory.csv", "trajectory.csv.tmp", "drape.html", "drape.html.tmp",
               "drape.png", "drape.gif"] + [f"frames/frame_{k:05d}.obj" for k in range(46)] + \
              ["frames/frame_00046.obj.tmp"]
 FOREIGN = ["notes.txt", "drape.png.bak", "my_trajectory.csv", "frames/mine.obj",
            "frames/frame_1.obj", "keep/frame_00000.obj", "keep/trajectory.csv"]
-
-
-def fail(message):
-    print("FAIL: " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def snapshot(folder):

@@ -18,17 +18,10 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from checks import check, fail  # noqa: E402  (tests/tools/checks.py, shared)
+
 KNOWN = "(the scenes: chain, net, orbit, cloth32, cloth64)"
-
-
-def fail(message):
-    print("FAIL: " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def run(pareto, args, work):

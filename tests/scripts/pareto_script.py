@@ -22,6 +22,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from checks import check, fail  # noqa: E402  (tests/tools/checks.py, shared)
+
 PARETO = {"build-essential", "cmake", "libeigen3-dev", "libbenchmark-dev", "python3",
           "python3-matplotlib"}
 NOT_FOR_PARETO = {"doctest-dev", "pybind11-dev", "python3-dev", "python3-numpy", "python3-pytest",
@@ -29,16 +32,6 @@ NOT_FOR_PARETO = {"doctest-dev", "pybind11-dev", "python3-dev", "python3-numpy",
                   "libcli11-dev", "libjs-three", "libsuitesparse-dev", "python3-dask"}
 HIDDEN = ["doctest", "pybind11", "Python", "Python3", "nlohmann_json", "pugixml", "CLI11",
           "CHOLMOD", "Bullet", "ZLIB"]
-
-
-def fail(message):
-    print("FAIL: " + message)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
 
 
 def main():

@@ -75,14 +75,15 @@ inline constexpr const char* kStateSceneKey = "massspring_state";
 
 }  // namespace detail
 
-/// @brief The names (ForceTerm::name) of the force terms a state scene can hold, in the order
-/// of the file's comment: "gravity", "constant force", "linear drag", "gravitational
-/// attraction", "vortex force". write_state() refuses a system with any other term.
+/// @brief The names (ForceConcept::name, each term's name()) of the force terms a state scene can
+/// hold, in the order of the file's comment: "gravity", "constant force", "linear drag",
+/// "gravitational attraction", "vortex force". write_state() refuses a system with any other
+/// term.
 inline std::vector<std::string> state_force_terms() {
   return {std::begin(detail::kStateForceTermNames), std::end(detail::kStateForceTermNames)};
 }
 
-/// @brief True when a state scene can hold a force term named `name` (ForceTerm::name).
+/// @brief True when a state scene can hold a force term named `name` (ForceConcept::name).
 inline bool state_holds_force_term(const std::string& name) {
   for (const char* term : detail::kStateForceTermNames)
     if (name == term) return true;

@@ -33,8 +33,8 @@ namespace massspring::io::detail {
 /// @brief The force terms a state scene holds, by their ForceTerm name (Gravity,
 /// ConstantForce, LinearDrag, GravitationalAttraction, VortexForce): the one list, read through
 /// io::state_force_terms() (io/state_scene.hpp).
-inline constexpr const char* kStateForceTermNames[] = {
-    "gravity", "constant force", "linear drag", "gravitational attraction", "vortex force"};
+inline constexpr const char* kStateForceTermNames[] = {"gravity", "constant force", "linear drag",
+                                                       "gravitational attraction", "vortex force"};
 
 /// @brief "gravity, constant force, ... and vortex force": kStateForceTermNames for messages.
 inline std::string state_force_terms_text() {
