@@ -6,6 +6,8 @@
 /// surface_contact() make and which needs that header; resolve(), the integrators' call, goes
 /// through the table and does nothing while there is no pass. A program that never sets a surface
 /// neither includes nor compiles the pipeline (candidates, spatial hash, CCD, impact zones).
+/// Also what a pass is given (SurfaceContactInput) and what it did (SurfaceContactReport), which
+/// the integrators see without that header.
 
 #include <optional>
 #include <utility>
