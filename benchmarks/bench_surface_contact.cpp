@@ -110,19 +110,30 @@ BENCHMARK(LargeDrape)
     ->Iterations(60)
     ->Unit(benchmark::kMillisecond);
 
-void BoxHash(benchmark::State& state) {
-  const int n = int(state.range(0));
+// An n x n cloth of 1 m by 1 m, one diagonal per cell (two triangles), in the x-y plane.
+massspring::SceneDescription<double> unit_cloth(int n) {
   massspring::ClothOptions o;
   o.columns = o.rows = n;
   o.width = o.height = 1.0;
   o.shear = massspring::ClothShear::One;
-  const massspring::SceneDescription<double> cloth = massspring::make_cloth(o);
-  const double spacing = 1.0 / (n - 1);
+  return massspring::make_cloth(o);
+}
+
+// Moves every coordinate of x by its own uniform random step in [-spacing / 2, spacing / 2]
+// (seed 1: the same steps at every call).
+void jitter(massspring::Points<double>& x, double spacing) {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> step(-spacing / 2, spacing / 2);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (int c = 0; c < 3; ++c) x(i, c) += step(rng);
+}
+
+void BoxHash(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const massspring::SceneDescription<double> cloth = unit_cloth(n);
+  const double spacing = 1.0 / (n - 1);
   massspring::Points<double> x0 = cloth.vertices, x1 = cloth.vertices;
-  for (Eigen::Index i = 0; i < x1.rows(); ++i)
-    for (int c = 0; c < 3; ++c) x1(i, c) += step(rng);
+  jitter(x1, spacing);
   using Box = massspring::contact::AlignedBox3<double>;
   const auto swept = [&](std::initializer_list<int> points) {
     Box b{x0.row(*points.begin()).transpose(), x0.row(*points.begin()).transpose()};
@@ -159,14 +170,8 @@ BENCHMARK(BoxHash)->ArgName("grid")->RangeMultiplier(2)->Range(32, 256)->Unit(
 // the time per triangle.
 void ConeTree(benchmark::State& state) {
   const int n = int(state.range(0));
-  massspring::ClothOptions o;
-  o.columns = o.rows = n;
-  o.width = o.height = 1.0;
-  o.shear = massspring::ClothShear::One;
-  const massspring::SceneDescription<double> cloth = massspring::make_cloth(o);
+  const massspring::SceneDescription<double> cloth = unit_cloth(n);
   const double spacing = 1.0 / (n - 1);
-  std::mt19937 rng(1);
-  std::uniform_real_distribution<double> step(-spacing / 2, spacing / 2);
   massspring::Points<double> x0 = cloth.vertices, x1 = cloth.vertices;
   const auto roll = [&](massspring::Points<double>& x, double radius, double fall) {
     for (Eigen::Index i = 0; i < x.rows(); ++i) {
@@ -176,8 +181,7 @@ void ConeTree(benchmark::State& state) {
     }
   };
   if (state.range(1) == 0) {
-    for (Eigen::Index i = 0; i < x1.rows(); ++i)
-      for (int c = 0; c < 3; ++c) x1(i, c) += step(rng);
+    jitter(x1, spacing);
   } else {
     roll(x0, 1 / (1.5 * M_PI), 0);
     roll(x1, 0.98 / (1.5 * M_PI), spacing / 2);

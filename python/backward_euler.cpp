@@ -14,8 +14,8 @@ void bind_backward_euler(py::module_& m) {
       .value("Linearized", BackwardEulerMode::Linearized)
       .value("Newton", BackwardEulerMode::Newton);
 
-  py::class_<Options>(m, "BackwardEulerOptions", "BackwardEuler's options; read at every step.")
-      .def(py::init<>())
+  py::class_<Options> o(m, "BackwardEulerOptions", "BackwardEuler's options; read at every step.");
+  o.def(py::init<>())
       .def_readwrite("mode", &Options::mode, "Linearized (one Newton step) or Newton.")
       .def_readwrite("iterations", &Options::iterations, "Newton: most iterations (>= 1).")
       .def_readwrite("tolerance", &Options::tolerance,
@@ -24,10 +24,8 @@ void bind_backward_euler(py::module_& m) {
       .def_readwrite("contact_weight", &Options::contact_weight,
                      "Weight alpha of contact and friction inside the solve: alpha sqrt(m (m + "
                      "h^2 k)) per point, k its springs' summed stiffness (0: at the end of the "
-                     "step; 1 suits dt = 1/30).")
-      .def_readwrite("energy_growth", &Options::energy_growth,
-                     "A step whose energy passes its start energy + energy_growth (S + S_c) is refused and reported "
-                     "(StepReport.blew_up); >= 0, default 100, 0: off.");
+                     "step; 1 suits dt = 1/30).");
+  def_energy_growth(o);
 
   py::class_<Solver> c(m, "BackwardEuler",
                        "Implicit Euler on (M - h dF/dv - h^2 dF/dx), linearised or Newton.");

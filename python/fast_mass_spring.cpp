@@ -74,10 +74,8 @@ void bind_fast_mass_spring(py::module_& m) {
       .def_readwrite("contact_weight", &Options::contact_weight,
                      "Weight alpha of contact and friction inside the iteration: alpha sqrt(m "
                      "(m + dt^2 k)) / dt^2 per point, k its springs' summed stiffness (default "
-                     "1; 0: contact only at the end of the step).")
-      .def_readwrite("energy_growth", &Options::energy_growth,
-                     "A step whose energy passes its start energy + energy_growth (S + S_c) is refused and reported "
-                     "(StepReport.blew_up); >= 0, default 100, 0: off.")
+                     "1; 0: contact only at the end of the step).");
+  def_energy_growth(o)
       .def_static("reference", &Options::reference,
                   "The assignment's plain iteration: 50 iterations from the current "
                   "positions, no acceleration, no contact term.")

@@ -9,6 +9,17 @@
 
 namespace massspring::python {
 
+/// @brief Adds the implicit integrators' option energy_growth (BackwardEulerOptions,
+/// FastMassSpringOptions: the energy bound of integrators/detail/energy_bound.hpp, default 100) to
+/// their options' class `c`; returns `c`.
+template <class Class>
+Class& def_energy_growth(Class& c) {
+  using Options = typename Class::type;
+  return c.def_readwrite("energy_growth", &Options::energy_growth,
+                         "A step whose energy passes its start energy + energy_growth (S + S_c) "
+                         "is refused and reported (StepReport.blew_up); >= 0, default 100, 0: off.");
+}
+
 /// @brief Adds precompute, step and dt to an integrator class, and DivergenceGuard.step for it
 /// (the guard must be bound first). `Step` is how the binding steps
 /// (the integrator's own step(), or another call on it).

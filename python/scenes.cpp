@@ -2,6 +2,8 @@
 // the C++ generators' options with their field names, a SceneDescription to read or change, and
 // the system made from it exactly as massspring-simulate --generate makes it.
 
+#include <type_traits>
+
 #include "bindings.hpp"
 
 namespace massspring::python {
@@ -33,10 +35,12 @@ T from_fields(const py::kwargs& fields, const char* type) {
   return value;
 }
 
-// An optional point [m] of a generator's options: None or three numbers.
-template <class T>
-void optional_point(py::class_<T>& c, const char* name, std::optional<Vec3> T::*member,
+// An optional point [m] of a generator's options: None or three numbers. `member` may be one of
+// a base of T (ScenePlacement's origin and center).
+template <class T, class Owner>
+void optional_point(py::class_<T>& c, const char* name, std::optional<Vec3> Owner::*member,
                     const char* doc) {
+  static_assert(std::is_base_of_v<Owner, T>, "member must be T's or a base's");
   c.def_property(
       name,
       [member](const T& o) -> py::object {

@@ -136,93 +136,108 @@ def machine_block(perf):
             f"(1, 5, 15 min) at the start {', '.join(m['load_start'])}{load_end}.")
 
 
+def scene_table(runs, header, row, program):
+    """The table of one row per scene of `runs` (row(runs, scene): the cells, or None to leave
+    the scene out), then when(runs, program)."""
+    rows = [r for r in (row(runs, s) for s in scenes_in(runs)) if r is not None]
+    return table(header, rows) + when(runs, program)
+
+
+def step_row(runs, s):
+    ours, seed = get(runs, "Step", "Sparse", s), get(runs, "Step", "Seed", s)
+    floor, eigen = get(runs, "Floor", "Sparse", s), get(runs, "Floor", "EigenSolve", s)
+    paired = get(runs, "Paired", "Sparse", s, "it_per_floor")
+    r = runs.get(("Step", "Sparse", s), {})
+    it = r.get("iterations_per_step") or 50
+    return [
+        s, fmt(r.get("points"), ".0f"), fmt(r.get("springs"), ".0f"),
+        fmt(r.get("nnz_L"), ".0f"), fmt(ours, ".2f"), fmt(ratio(ours, it), ".3f"),
+        fmt(floor, ".3f"), fmt(paired, ".2f"), fmt(seed, ".2f"),
+        fmt(ratio(seed, ours), ".1f") + "x", fmt(ratio(ratio(seed, 50), floor), ".1f"),
+        fmt(ratio(eigen, floor), ".1f"),
+        fmt(get(runs, "Precompute", "Sparse", s), ".1f"),
+        fmt(get(runs, "Precompute", "Seed", s), ".1f"),
+        fmt(get(runs, "Step", "Seed", s, "first_step_diff"), ".0e")]
+
+
 def step_block(perf):
-    runs = load_gbench(perf / "step.json")
-    rows = []
-    for s in scenes_in(runs):
-        ours, seed = get(runs, "Step", "Sparse", s), get(runs, "Step", "Seed", s)
-        floor, eigen = get(runs, "Floor", "Sparse", s), get(runs, "Floor", "EigenSolve", s)
-        paired = get(runs, "Paired", "Sparse", s, "it_per_floor")
-        r = runs.get(("Step", "Sparse", s), {})
-        it = r.get("iterations_per_step") or 50
-        rows.append([
-            s, fmt(r.get("points"), ".0f"), fmt(r.get("springs"), ".0f"),
-            fmt(r.get("nnz_L"), ".0f"), fmt(ours, ".2f"), fmt(ratio(ours, it), ".3f"),
-            fmt(floor, ".3f"), fmt(paired, ".2f"), fmt(seed, ".2f"),
-            fmt(ratio(seed, ours), ".1f") + "x", fmt(ratio(ratio(seed, 50), floor), ".1f"),
-            fmt(ratio(eigen, floor), ".1f"),
-            fmt(get(runs, "Precompute", "Sparse", s), ".1f"),
-            fmt(get(runs, "Precompute", "Seed", s), ".1f"),
-            fmt(get(runs, "Step", "Seed", s, "first_step_diff"), ".0e")])
-    return table(["scene", "points", "springs", "nnz(L)", "ours ms/step", "ours ms/iteration",
-                  "floor ms", "ours iteration/floor", "seed ms/step", "seed/ours",
-                  "seed iteration/floor", "Eigen solve/floor", "ours precompute ms",
-                  "seed precompute ms", "ours - seed after one step"], rows) + when(
-                      runs, "bench_step")
+    return scene_table(
+        load_gbench(perf / "step.json"),
+        ["scene", "points", "springs", "nnz(L)", "ours ms/step", "ours ms/iteration",
+         "floor ms", "ours iteration/floor", "seed ms/step", "seed/ours",
+         "seed iteration/floor", "Eigen solve/floor", "ours precompute ms",
+         "seed precompute ms", "ours - seed after one step"], step_row, "bench_step")
+
+
+def acceleration_row(runs, s):
+    seed, plain = get(runs, "Step", "Seed", s), get(runs, "Step", "Sparse", s)
+    cheb, anderson = get(runs, "Step", "Chebyshev", s), get(runs, "Step", "Anderson", s)
+    cheb2 = get(runs, "Step", "ChebyshevThreads2", s, "real_ms")
+    seed_wall = get(runs, "Step", "Seed", s, "real_ms")
+    k = {n: get(runs, "Step", n, s, "iterations_per_step") for n in ("Chebyshev", "Anderson")}
+    return [
+        s, fmt(get(runs, "Step", "Sparse", s, "plain_error"), ".2g"),
+        fmt(plain, ".2f"), fmt(seed, ".2f"),
+        fmt(k["Chebyshev"], ".0f"), fmt(cheb, ".2f"), fmt(ratio(plain, cheb), ".1f") + "x",
+        fmt(ratio(seed, cheb), ".1f") + "x",
+        fmt(k["Anderson"], ".0f"), fmt(anderson, ".2f"),
+        fmt(ratio(plain, anderson), ".1f") + "x", fmt(ratio(seed, anderson), ".1f") + "x",
+        fmt(ratio(seed_wall, cheb2), ".1f") + "x"]
 
 
 def acceleration_block(perf):
-    runs = load_gbench(perf / "acceleration.json")
-    rows = []
-    for s in scenes_in(runs):
-        seed, plain = get(runs, "Step", "Seed", s), get(runs, "Step", "Sparse", s)
-        cheb, anderson = get(runs, "Step", "Chebyshev", s), get(runs, "Step", "Anderson", s)
-        cheb2 = get(runs, "Step", "ChebyshevThreads2", s, "real_ms")
-        seed_wall = get(runs, "Step", "Seed", s, "real_ms")
-        k = {n: get(runs, "Step", n, s, "iterations_per_step") for n in ("Chebyshev", "Anderson")}
-        rows.append([
-            s, fmt(get(runs, "Step", "Sparse", s, "plain_error"), ".2g"),
-            fmt(plain, ".2f"), fmt(seed, ".2f"),
-            fmt(k["Chebyshev"], ".0f"), fmt(cheb, ".2f"), fmt(ratio(plain, cheb), ".1f") + "x",
-            fmt(ratio(seed, cheb), ".1f") + "x",
-            fmt(k["Anderson"], ".0f"), fmt(anderson, ".2f"),
-            fmt(ratio(plain, anderson), ".1f") + "x", fmt(ratio(seed, anderson), ".1f") + "x",
-            fmt(ratio(seed_wall, cheb2), ".1f") + "x"])
-    return table(["scene", "step error of 50 plain iterations", "plain 50 ms", "seed 50 ms",
-                  "Chebyshev iterations", "Chebyshev ms", "plain/Chebyshev", "seed/Chebyshev",
-                  "Anderson iterations", "Anderson ms", "plain/Anderson", "seed/Anderson",
-                  "seed/Chebyshev on 2 threads (wall)"], rows) + when(runs, "bench_acceleration")
+    return scene_table(
+        load_gbench(perf / "acceleration.json"),
+        ["scene", "step error of 50 plain iterations", "plain 50 ms", "seed 50 ms",
+         "Chebyshev iterations", "Chebyshev ms", "plain/Chebyshev", "seed/Chebyshev",
+         "Anderson iterations", "Anderson ms", "plain/Anderson", "seed/Anderson",
+         "seed/Chebyshev on 2 threads (wall)"], acceleration_row, "bench_acceleration")
+
+
+# bench_options' variants: (variant, the variant it is divided by, column name)
+OPTION_VARIANTS = [("SparseNoSimd", "Sparse", "simd = false"),
+                   ("SparseExact", "Sparse", "exact pins"),
+                   ("SparseFloat", "SparseExact", "float / double, exact pins"),
+                   ("SparseAMD", "Sparse", "AMD order")]
+
+
+def options_row(runs, s):
+    row = [s, fmt(get(runs, "Step", "Sparse", s), ".2f")]
+    for v, base, _ in OPTION_VARIANTS:
+        row.append(fmt(ratio(get(runs, "Step", v, s), get(runs, "Step", base, s)), ".2f"))
+    row.append(fmt(get(runs, "Floor", "Sparse", s), ".3f"))
+    for v, base, _ in OPTION_VARIANTS:
+        row.append(fmt(ratio(get(runs, "Floor", v, s), get(runs, "Floor", base, s)), ".2f"))
+    return row
 
 
 def options_block(perf):
-    runs = load_gbench(perf / "options.json")
-    # (variant, the variant it is divided by, column name)
-    variants = [("SparseNoSimd", "Sparse", "simd = false"), ("SparseExact", "Sparse", "exact pins"),
-                ("SparseFloat", "SparseExact", "float / double, exact pins"),
-                ("SparseAMD", "Sparse", "AMD order")]
-    rows = []
-    for s in scenes_in(runs):
-        row = [s, fmt(get(runs, "Step", "Sparse", s), ".2f")]
-        for v, base, _ in variants:
-            row.append(fmt(ratio(get(runs, "Step", v, s), get(runs, "Step", base, s)), ".2f"))
-        row.append(fmt(get(runs, "Floor", "Sparse", s), ".3f"))
-        for v, base, _ in variants:
-            row.append(fmt(ratio(get(runs, "Floor", v, s), get(runs, "Floor", base, s)), ".2f"))
-        rows.append(row)
-    header = (["scene", "default ms/step"] + [f"step: {n}" for _, _, n in variants]
-              + ["default floor ms"] + [f"floor: {n}" for _, _, n in variants])
-    return table(header, rows) + when(runs, "bench_options")
+    header = (["scene", "default ms/step"] + [f"step: {n}" for _, _, n in OPTION_VARIANTS]
+              + ["default floor ms"] + [f"floor: {n}" for _, _, n in OPTION_VARIANTS])
+    return scene_table(load_gbench(perf / "options.json"), header, options_row, "bench_options")
+
+
+def dense_row(runs, s):
+    if ("Step", "Dense", s) not in runs:
+        return None
+    r = runs[("Step", "Dense", s)]
+    return [s, fmt(r.get("points"), ".0f"),
+            fmt(get(runs, "Precompute", "Dense", s), ".1f"),
+            fmt(get(runs, "Precompute", "Sparse", s), ".1f"),
+            fmt(get(runs, "Step", "Dense", s), ".2f"),
+            fmt(get(runs, "Step", "Sparse", s), ".2f"),
+            fmt(ratio(ratio(get(runs, "Step", "Dense", s), 50),
+                      get(runs, "Floor", "Dense", s)), ".2f"),
+            fmt(ratio(ratio(get(runs, "Step", "Sparse", s), 50),
+                      get(runs, "Floor", "Sparse", s)), ".2f")]
 
 
 def dense_block(perf):
-    runs = load_gbench(perf / "options.json")
-    rows = []
-    for s in scenes_in(runs):
-        if ("Step", "Dense", s) not in runs:
-            continue
-        r = runs[("Step", "Dense", s)]
-        rows.append([s, fmt(r.get("points"), ".0f"),
-                     fmt(get(runs, "Precompute", "Dense", s), ".1f"),
-                     fmt(get(runs, "Precompute", "Sparse", s), ".1f"),
-                     fmt(get(runs, "Step", "Dense", s), ".2f"),
-                     fmt(get(runs, "Step", "Sparse", s), ".2f"),
-                     fmt(ratio(ratio(get(runs, "Step", "Dense", s), 50),
-                               get(runs, "Floor", "Dense", s)), ".2f"),
-                     fmt(ratio(ratio(get(runs, "Step", "Sparse", s), 50),
-                               get(runs, "Floor", "Sparse", s)), ".2f")])
-    return table(["scene", "points", "Dense precompute ms", "Sparse precompute ms",
-                  "Dense ms/step", "Sparse ms/step", "Dense iteration/floor",
-                  "Sparse iteration/floor"], rows) + when(runs, "bench_options")
+    return scene_table(
+        load_gbench(perf / "options.json"),
+        ["scene", "points", "Dense precompute ms", "Sparse precompute ms",
+         "Dense ms/step", "Sparse ms/step", "Dense iteration/floor",
+         "Sparse iteration/floor"], dense_row, "bench_options")
 
 
 def threads_block(perf):

@@ -23,8 +23,8 @@ enum class ChainPins {
 
 /// @brief Parameters of make_chain(). Point i has index i and lies at i * length / (points - 1)
 /// along `direction` from point 0, which lies at `origin` (default the origin), or the chain's
-/// middle at `center`.
-struct ChainOptions {
+/// middle at `center` (ScenePlacement).
+struct ChainOptions : ScenePlacement {
   /// @brief Number of points, >= 2.
   int points = 10;
   /// @brief Distance from the first to the last point [m], finite and > 0.
@@ -37,11 +37,6 @@ struct ChainOptions {
   double stiffness = 500;
   /// @brief Mass of every point [kg], finite and > 0.
   double mass = 1;
-  /// @brief Where point 0 lies [m] (default: the origin). At most one of origin and center.
-  std::optional<Vector3<double>> origin;
-  /// @brief Where the middle of the chain (the centre of its bounding box) lies [m]. At most one
-  /// of origin and center.
-  std::optional<Vector3<double>> center;
 };
 
 /// @brief A straight chain: `points` points evenly spaced along `direction`, springs between
@@ -78,7 +73,7 @@ inline SceneDescription<double> make_chain(const ChainOptions& o) {
   }
   s.stiffness = o.stiffness;
   s.mass = o.mass;
-  detail::place(s, o.origin, o.center, "make_chain");
+  detail::place(s, o, "make_chain");
   return s;
 }
 

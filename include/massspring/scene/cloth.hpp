@@ -34,8 +34,9 @@ enum class ClothPlane {
   Horizontal,  ///< the x-z plane, rows going along +z: point (r, c) at (c dx, 0, r dy)
 };
 
-/// @brief Parameters of make_cloth(). Point (r, c) has index r * columns + c.
-struct ClothOptions {
+/// @brief Parameters of make_cloth(). Point (r, c) has index r * columns + c; point (0, 0) lies at
+/// `origin`, or the cloth's middle at `center` (ScenePlacement).
+struct ClothOptions : ScenePlacement {
   /// @brief Points along x, >= 2.
   int columns = 60;
   /// @brief Points along the other axis (y or z), >= 2.
@@ -57,11 +58,6 @@ struct ClothOptions {
   /// @brief Mass of every point [kg], > 0. When absent: the faces' lumped Voronoi areas (density
   /// 1 kg/m^2), or with ClothShear::None (no faces) width * height / #points for every point.
   std::optional<double> mass;
-  /// @brief Where point (0, 0) lies [m] (default: the origin). At most one of origin and center.
-  std::optional<Vector3<double>> origin;
-  /// @brief Where the middle of the cloth (the centre of its bounding box) lies [m], e.g. above
-  /// the ball it is dropped on. At most one of origin and center.
-  std::optional<Vector3<double>> center;
 };
 
 /// @brief A rectangular cloth grid. Springs: structural (rows, columns), the chosen diagonals and,
@@ -136,7 +132,7 @@ inline SceneDescription<double> make_cloth(const ClothOptions& o) {
   s.stiffness = o.stiffness;
   s.mass = o.mass;
   if (!s.mass && o.shear == ClothShear::None) s.mass = o.width * o.height / (rows * cols);
-  detail::place(s, o.origin, o.center, "make_cloth");
+  detail::place(s, o, "make_cloth");
   return s;
 }
 

@@ -7,6 +7,7 @@
 
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
+#include "massspring/scene/cloth.hpp"
 #include "massspring/scene/placement.hpp"
 #include "massspring/scene/scene_description.hpp"
 
@@ -21,8 +22,8 @@ enum class NetPins {
 
 /// @brief Parameters of make_net(). Point (r, c) has index r * columns + c and lies in the
 /// horizontal x-z plane at (c dx, 0, r dz), dx = width / (columns - 1), dz = depth / (rows - 1),
-/// then moved so that point 0 lies at `origin`, or the net's middle at `center`.
-struct NetOptions {
+/// then moved so that point 0 lies at `origin`, or the net's middle at `center` (ScenePlacement).
+struct NetOptions : ScenePlacement {
   /// @brief Points along x, >= 2.
   int columns = 8;
   /// @brief Points along z, >= 2.
@@ -37,11 +38,6 @@ struct NetOptions {
   double stiffness = 300;
   /// @brief Mass of every point [kg], finite and > 0.
   double mass = 1;
-  /// @brief Where point (0, 0) lies [m] (default: the origin). At most one of origin and center.
-  std::optional<Vector3<double>> origin;
-  /// @brief Where the middle of the net (the centre of its bounding box) lies [m]. At most one of
-  /// origin and center.
-  std::optional<Vector3<double>> center;
 };
 
 /// @brief A rectangular net: columns x rows points, springs between neighbours along each row
@@ -59,22 +55,22 @@ inline SceneDescription<double> make_net(const NetOptions& o) {
   detail::require_number("make_net", "stiffness", o.stiffness, false);
   detail::require_number("make_net", "mass", o.mass, true);
 
+  // The points and springs of a horizontal cloth without diagonals (make_cloth(), which lists
+  // the row springs, then the column springs), pinned here.
+  ClothOptions grid;
+  grid.columns = o.columns;
+  grid.rows = o.rows;
+  grid.width = o.width;
+  grid.height = o.depth;
+  grid.shear = ClothShear::None;
+  grid.plane = ClothPlane::Horizontal;
+  grid.pins = ClothPins::None;
+  grid.stiffness = o.stiffness;
+  grid.mass = o.mass;
+  SceneDescription<double> s = make_cloth(grid);
+
   const int cols = o.columns, rows = o.rows;
   auto id = [cols](int r, int c) { return r * cols + c; };
-  const double dx = o.width / (cols - 1), dz = o.depth / (rows - 1);
-
-  SceneDescription<double> s;
-  s.vertices.resize(rows * cols, 3);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) s.vertices.row(id(r, c)) << c * dx, 0.0, r * dz;
-
-  s.edges.resize(rows * (cols - 1) + cols * (rows - 1), 2);
-  int e = 0;
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c + 1 < cols; ++c) s.edges.row(e++) << id(r, c), id(r, c + 1);
-  for (int r = 0; r + 1 < rows; ++r)
-    for (int c = 0; c < cols; ++c) s.edges.row(e++) << id(r, c), id(r + 1, c);
-
   switch (o.pins) {
     case NetPins::None:
       break;
@@ -87,9 +83,7 @@ inline SceneDescription<double> make_net(const NetOptions& o) {
           if (r == 0 || c == 0 || r == rows - 1 || c == cols - 1) s.pinned.push_back(id(r, c));
       break;
   }
-  s.stiffness = o.stiffness;
-  s.mass = o.mass;
-  detail::place(s, o.origin, o.center, "make_net");
+  detail::place(s, o, "make_net");
   return s;
 }
 

@@ -6,6 +6,8 @@
 /// surface_contact() make and which needs that header; resolve(), the integrators' call, goes
 /// through the table and does nothing while there is no pass. A program that never sets a surface
 /// neither includes nor compiles the pipeline (candidates, spatial hash, CCD, impact zones).
+/// Also what a pass is given (SurfaceContactInput) and what it did (SurfaceContactReport), which
+/// the integrators see without that header.
 
 #include <optional>
 #include <utility>
@@ -22,6 +24,21 @@ class ColliderSet;
 // Incomplete until the header named here is included: set_surface() and surface_contact() need it.
 template <class Scalar>
 class SurfaceContact;  // #include <massspring/contact/response/surface_contact.hpp> for a surface
+
+/// @brief What surface contact is given for one step (see SurfaceContact::resolve()).
+template <class Scalar>
+struct SurfaceContactInput {
+  const Points<Scalar>& x_start;
+  Points<Scalar>& x_end;
+  Points<Scalar>& v_end;
+  Scalar dt;
+  const Vector<Scalar>& masses;
+  const std::vector<int>& pinned;
+  const Triangles& triangles;
+  const Edges& edges;
+  const std::optional<SelfCollision<Scalar>>& self_collision;
+  const ColliderSet<Scalar>& colliders;
+};
 
 /// @brief What one SurfaceContact pass did.
 struct SurfaceContactReport {
@@ -75,40 +92,27 @@ class SurfaceContactSlot {
     return *pass_;
   }
 
-  /// @brief SurfaceContact::resolve() of the pass; nothing (an empty report) when there is none.
-  SurfaceContactReport resolve(const Points<Scalar>& x_start, Points<Scalar>& x_end,
-                               Points<Scalar>& v_end, Scalar dt, const Vector<Scalar>& masses,
-                               const std::vector<int>& pinned, const Triangles& triangles,
-                               const Edges& edges,
-                               const std::optional<SelfCollision<Scalar>>& self_collision,
-                               const ColliderSet<Scalar>& colliders) {
+  /// @brief SurfaceContact::resolve() of the pass on `in`; nothing (an empty report) when there
+  /// is no pass.
+  SurfaceContactReport resolve(const SurfaceContactInput<Scalar>& in) {
     if (!pass_) return {};
-    return ops_->resolve(*pass_, x_start, x_end, v_end, dt, masses, pinned, triangles, edges,
-                         self_collision, colliders);
+    return ops_->resolve(*pass_, in);
   }
 
  private:
   struct Ops {
     void (*destroy)(SurfaceContact<Scalar>*);
     SurfaceContact<Scalar>* (*clone)(const SurfaceContact<Scalar>&);
-    SurfaceContactReport (*resolve)(SurfaceContact<Scalar>&, const Points<Scalar>&, Points<Scalar>&,
-                                    Points<Scalar>&, Scalar, const Vector<Scalar>&,
-                                    const std::vector<int>&, const Triangles&, const Edges&,
-                                    const std::optional<SelfCollision<Scalar>>&,
-                                    const ColliderSet<Scalar>&);
+    SurfaceContactReport (*resolve)(SurfaceContact<Scalar>&, const SurfaceContactInput<Scalar>&);
   };
   static void destroy(SurfaceContact<Scalar>* p) { delete p; }
   static SurfaceContact<Scalar>* clone(const SurfaceContact<Scalar>& p) {
     return new SurfaceContact<Scalar>(p);
   }
-  static SurfaceContactReport resolve_pass(
-      SurfaceContact<Scalar>& p, const Points<Scalar>& x_start, Points<Scalar>& x_end,
-      Points<Scalar>& v_end, Scalar dt, const Vector<Scalar>& masses,
-      const std::vector<int>& pinned, const Triangles& triangles, const Edges& edges,
-      const std::optional<SelfCollision<Scalar>>& self_collision,
-      const ColliderSet<Scalar>& colliders) {
-    return p.resolve(x_start, x_end, v_end, dt, masses, pinned, triangles, edges, self_collision,
-                     colliders);
+  static SurfaceContactReport resolve_pass(SurfaceContact<Scalar>& p,
+                                           const SurfaceContactInput<Scalar>& in) {
+    return p.resolve(in.x_start, in.x_end, in.v_end, in.dt, in.masses, in.pinned, in.triangles,
+                     in.edges, in.self_collision, in.colliders);
   }
 
   const Ops* ops_ = nullptr;

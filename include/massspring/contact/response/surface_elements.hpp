@@ -31,26 +31,12 @@
 #include "massspring/contact/colliders/colliders.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
+#include "massspring/contact/response/surface_contact_slot.hpp"
 #include "massspring/contact/self_collision.hpp"
 #include "massspring/detail/triangle_edges.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
-
-/// @brief What surface contact is given for one step (see SurfaceContact::resolve()).
-template <class Scalar>
-struct SurfaceContactInput {
-  const Points<Scalar>& x_start;
-  Points<Scalar>& x_end;
-  Points<Scalar>& v_end;
-  Scalar dt;
-  const Vector<Scalar>& masses;
-  const std::vector<int>& pinned;
-  const Triangles& triangles;
-  const Edges& edges;
-  const std::optional<SelfCollision<Scalar>>& self_collision;
-  const ColliderSet<Scalar>& colliders;
-};
 
 /// @brief The pair's points p and barycentric weights a (+ on the first element, - on the
 /// second), its closest distance [m] and unit normal n (from

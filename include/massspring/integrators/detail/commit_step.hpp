@@ -48,8 +48,8 @@ void commit_step(System& system, typename System::PointsType& x_end,
     contact::handle_collisions(system, x0, system.velocities(), x_end, v_end, dt,
                                collider_friction);
     const contact::SurfaceContactReport r = system.surface_contact_slot().resolve(
-        x0, x_end, v_end, dt, system.masses(), pinned, system.surface(), system.surface_edges(),
-        system.self_collision(), system.colliders());
+        {x0, x_end, v_end, dt, system.masses(), pinned, system.surface(), system.surface_edges(),
+         system.self_collision(), system.colliders()});
     report.contact_impulses = r.impulses;
     report.contact_zone_points = r.zone_points;
     report.contact_resolved = r.resolved;

@@ -3,7 +3,10 @@
 /// @brief write_fosssim_scene(): a FOSSSim XML scene that read_fosssim_scene() reads back exactly.
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "massspring/error.hpp"
@@ -30,19 +33,26 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
       throw Error(
           detail::message(path.string(), ": particle ", i, " has z != 0: FOSSSim scenes are 2D"));
   std::string out = "<scene>\n";
-  auto attribute = [&out](const char* name, double x) {
+  // ` name="x"`: an integer x as an index, any other as the shortest decimal of the double.
+  auto attribute = [&out](const char* name, auto x) {
     out += ' ';
     out += name;
     out += "=\"";
-    append_number(out, x);
+    if constexpr (std::is_integral_v<decltype(x)>)
+      append_index(out, int(x));
+    else
+      append_number(out, double(x));
     out += '"';
   };
-  auto index_attribute = [&out](const char* name, int i) {
-    out += ' ';
-    out += name;
-    out += "=\"";
-    append_index(out, i);
-    out += '"';
+  // A line `  <tag i="..." x="..."/>`: the index attributes in order, then the numbers.
+  using Indices = std::initializer_list<std::pair<const char*, int>>;
+  using Numbers = std::initializer_list<std::pair<const char*, double>>;
+  auto element = [&](const char* tag, Indices indices, Numbers numbers) {
+    out += "  <";
+    out += tag;
+    for (const auto& [name, i] : indices) attribute(name, i);
+    for (const auto& [name, x] : numbers) attribute(name, x);
+    out += "/>\n";
   };
   auto escaped = [](const std::string& s) {
     std::string e;
@@ -98,7 +108,7 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
       attribute("thickness", c.thickness);
     }
     if (c.type == FosssimCollision::Hybrid) {
-      index_attribute("maxiters", c.max_iterations);
+      attribute("maxiters", c.max_iterations);
     }
     out += "/>\n";
   }
@@ -118,54 +128,24 @@ inline void write_fosssim_scene(const std::filesystem::path& path, const Fosssim
   }
   for (Eigen::Index e = 0; e < scene.edges.rows(); ++e) {
     out += "  <edge";
-    index_attribute("i", scene.edges(e, 0));
-    index_attribute("j", scene.edges(e, 1));
+    attribute("i", scene.edges(e, 0));
+    attribute("j", scene.edges(e, 1));
     if (scene.edge_radius(int(e)) != FosssimScene::kDefaultEdgeRadius)
       attribute("radius", scene.edge_radius(int(e)));
     out += "/>\n";
   }
-  for (const auto& h : scene.halfplanes) {
-    out += "  <halfplane";
-    attribute("px", h.point(0));
-    attribute("py", h.point(1));
-    attribute("nx", h.normal(0));
-    attribute("ny", h.normal(1));
-    out += "/>\n";
-  }
-  for (const auto& s : scene.springs) {
-    out += "  <springforce";
-    index_attribute("edge", s.edge);
-    attribute("k", s.k);
-    attribute("l0", s.l0);
-    attribute("b", s.b);
-    out += "/>\n";
-  }
-  if (scene.gravity) {
-    out += "  <simplegravity";
-    attribute("fx", (*scene.gravity)(0));
-    attribute("fy", (*scene.gravity)(1));
-    out += "/>\n";
-  }
-  for (const auto& a : scene.attractions) {
-    out += "  <gravitationalforce";
-    index_attribute("i", a.i);
-    index_attribute("j", a.j);
-    attribute("G", a.G);
-    out += "/>\n";
-  }
-  for (const auto& v : scene.vortices) {
-    out += "  <vortexforce";
-    index_attribute("i", v.i);
-    index_attribute("j", v.j);
-    attribute("kbs", v.kbs);
-    attribute("kvc", v.kvc);
-    out += "/>\n";
-  }
-  if (scene.drag) {
-    out += "  <dragdamping";
-    attribute("b", *scene.drag);
-    out += "/>\n";
-  }
+  for (const auto& h : scene.halfplanes)
+    element("halfplane", {},
+            {{"px", h.point(0)}, {"py", h.point(1)}, {"nx", h.normal(0)}, {"ny", h.normal(1)}});
+  for (const auto& s : scene.springs)
+    element("springforce", {{"edge", s.edge}}, {{"k", s.k}, {"l0", s.l0}, {"b", s.b}});
+  if (scene.gravity)
+    element("simplegravity", {}, {{"fx", (*scene.gravity)(0)}, {"fy", (*scene.gravity)(1)}});
+  for (const auto& a : scene.attractions)
+    element("gravitationalforce", {{"i", a.i}, {"j", a.j}}, {{"G", a.G}});
+  for (const auto& v : scene.vortices)
+    element("vortexforce", {{"i", v.i}, {"j", v.j}}, {{"kbs", v.kbs}, {"kvc", v.kvc}});
+  if (scene.drag) element("dragdamping", {}, {{"b", *scene.drag}});
   out += "</scene>\n";
   detail::write_text_file_atomically(path, out);
 }
