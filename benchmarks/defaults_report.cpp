@@ -250,8 +250,9 @@ void run(const Case& c, const char* integrator_name, bool self_collision, const 
             std::min(deepest, signed_distance(collider, s.positions().row(i).transpose(), k * kDt));
     worst_strain = std::max(worst_strain, strain(s).max);
     if (std::getenv("MS_TRACE"))
-      std::fprintf(stderr, "step %d ok %d finite %d blew %d resolved %d imp %d zone %d it %d strain %.3f\n", k,
-                   int(report.ok()), int(report.finite), int(report.blew_up),
+      std::fprintf(stderr,
+                   "step %d ok %d finite %d blew %d resolved %d imp %d zone %d it %d strain %.3f\n",
+                   k, int(report.ok()), int(report.finite), int(report.blew_up),
                    int(report.contact_resolved), report.contact_impulses,
                    report.contact_zone_points, report.iterations, strain(s).max);
   }

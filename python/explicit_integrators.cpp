@@ -24,7 +24,8 @@ void bind_explicit(py::module_& m, const char* name, const char* doc) {
     return integrator;
   }));
   c.def("set_energy_growth", &Integrator::set_energy_growth, py::arg("growth"),
-        "A step whose energy passes its start energy + growth (S + S_c) is refused and reported (StepReport.blew_up); "
+        "A step whose energy passes its start energy + growth (S + S_c) is refused and reported "
+        "(StepReport.blew_up); "
         ">= 0, default 0: off. Takes effect at the next precompute().");
   bind_integrator_calls<Integrator>(m, c,
                                     [](Integrator& i, System& system) { return i.step(system); });

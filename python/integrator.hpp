@@ -15,9 +15,10 @@ namespace massspring::python {
 template <class Class>
 Class& def_energy_growth(Class& c) {
   using Options = typename Class::type;
-  return c.def_readwrite("energy_growth", &Options::energy_growth,
-                         "A step whose energy passes its start energy + energy_growth (S + S_c) "
-                         "is refused and reported (StepReport.blew_up); >= 0, default 100, 0: off.");
+  return c.def_readwrite(
+      "energy_growth", &Options::energy_growth,
+      "A step whose energy passes its start energy + energy_growth (S + S_c) "
+      "is refused and reported (StepReport.blew_up); >= 0, default 100, 0: off.");
 }
 
 /// @brief Adds precompute, step and dt to an integrator class, and DivergenceGuard.step for it

@@ -18,6 +18,7 @@ namespace massspring {
 /// default.
 /// @tparam System a MassSpringSystem<Scalar, Storage> (the storage is not used: no matrices)
 template <class System>
-class SymplecticEuler : public detail::ExplicitEuler<System, detail::EulerOrder::VelocitiesFirst> {};
+class SymplecticEuler : public detail::ExplicitEuler<System, detail::EulerOrder::VelocitiesFirst> {
+};
 
 }  // namespace massspring

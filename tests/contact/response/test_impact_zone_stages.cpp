@@ -40,8 +40,9 @@ struct TwoTriangles {
 
 }  // namespace
 
-TEST_CASE("impact zones: the projection lifts a sliding triangle off a pinned one moving up, "
-          "keeps its sliding and never moves a pin") {
+TEST_CASE(
+    "impact zones: the projection lifts a sliding triangle off a pinned one moving up, "
+    "keeps its sliding and never moves a pin") {
   const TwoTriangles t;
   const double dt = 0.1;
   // The pinned triangle rises 10 cm; the free one slides 2 cm along x and does not fall.
@@ -59,8 +60,8 @@ TEST_CASE("impact zones: the projection lifts a sliding triangle off a pinned on
   Pass pass;
   pass.arm();
   pass.set_impulse_rounds(0);  // straight to the projection
-  const auto r = pass.resolve(t.x0, x1, v1, dt, masses, pinned, t.triangles, edges, self,
-                              colliders);
+  const auto r =
+      pass.resolve(t.x0, x1, v1, dt, masses, pinned, t.triangles, edges, self, colliders);
   CHECK(r.resolved);
   CHECK(r.projected_points == 3);
   CHECK(r.zone_points == 0);
@@ -97,8 +98,8 @@ TEST_CASE("impact zones: pins that move differently through a pinned face are re
   massspring::contact::ColliderSet<double> colliders;
   Pass pass;
   pass.arm();
-  const auto r = pass.resolve(t.x0, x1, v1, dt, masses, pinned, t.triangles, edges, self,
-                              colliders);
+  const auto r =
+      pass.resolve(t.x0, x1, v1, dt, masses, pinned, t.triangles, edges, self, colliders);
   CHECK_FALSE(r.resolved);
   CHECK(x1 == proposed);
 }
@@ -121,8 +122,9 @@ TEST_CASE("surface contact: zero rounds of detection are refused when set") {
 // 25) either commits an end state with no crossing, or is reported (an energy blow-up or contact
 // left unresolved) and leaves the positions and velocities bit for bit. The twist does not yet
 // stay bounded: its contact grows over the steps until the energy bound refuses them.
-TEST_CASE("impact zones: a cloth twisted by its pinned ends crosses nowhere and reports every "
-          "step it refuses") {
+TEST_CASE(
+    "impact zones: a cloth twisted by its pinned ends crosses nowhere and reports every "
+    "step it refuses") {
   using System = massspring::MassSpringSystem<double>;
   const massspring::SceneDescription<double> scene = massspring::twisting_cloth_scene();
   System s = massspring::make_system<System>(scene);
@@ -136,7 +138,8 @@ TEST_CASE("impact zones: a cloth twisted by its pinned ends crosses nowhere and 
   int committed = 0;
   for (int k = 0; k < 32; ++k) {
     for (const int i : scene.pinned)
-      s.set_pin_target(i, massspring::twisting_cloth_target(start.row(i).transpose(), (k + 1) * dt));
+      s.set_pin_target(i,
+                       massspring::twisting_cloth_target(start.row(i).transpose(), (k + 1) * dt));
     const Points<double> x = s.positions(), v = s.velocities();
     const massspring::StepReport r = fms.step(s);
     CAPTURE(k);

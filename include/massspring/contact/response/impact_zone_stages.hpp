@@ -137,8 +137,7 @@ class ImpactZoneStages {
       const int count = starts_[z + 1] - starts_[z];
       const Anchors a = anchors(e, m, count);
       for (int k = 0; k < count; ++k)
-        if (e.pinned[std::size_t(m[k])] &&
-            !same_place(carried(e, in, a, m[k]), e.p1(m[k])))
+        if (e.pinned[std::size_t(m[k])] && !same_place(carried(e, in, a, m[k]), e.p1(m[k])))
           return false;
     }
     int total = 0;
@@ -154,8 +153,7 @@ class ImpactZoneStages {
         for (int k = 0; k < count; ++k)
           if (movable(m[k])) e.x1.row(m[k]) = carried(e, in, a, m[k]).transpose();
       } else {
-        rigid_zone_motion<Scalar>(m, count, false, in.masses, e.x0, in.dt, e.x1,
-                                  velocity_scratch_);
+        rigid_zone_motion<Scalar>(m, count, false, in.masses, e.x0, in.dt, e.x1, velocity_scratch_);
         // A rigid motion that would take a point into a solid: the zone stays where it started.
         bool blocked = false;
         for (int k = 0; k < count && !blocked; ++k) blocked = e.inside_solid(in.colliders, m[k]);

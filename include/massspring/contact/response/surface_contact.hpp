@@ -15,10 +15,11 @@
 /// Pairs: a point and a triangle it is not a corner of, two edges that share no point. Between
 /// parts of the cloth only when self-collision is on (contact/self_collision.hpp), and not inside
 /// a patch that cannot touch itself over the step (contact/broad_phase/normal_cone_tree.hpp: its
-/// parts lie side by side on one layer); between the cloth and an obstacle always. Positions move on straight lines over the step,
-/// x(t) = x_start + t (x_end - x_start), t in [0, 1]. The pipeline (Bridson, Fedkiw and Anderson
-/// 2002, "Robust treatment of collisions, contact and friction for cloth animation", sections
-/// 7.2-7.4; Harmon et al. 2008, "Robust treatment of simultaneous collisions"):
+/// parts lie side by side on one layer); between the cloth and an obstacle always. Positions move
+/// on straight lines over the step, x(t) = x_start + t (x_end - x_start), t in [0, 1]. The pipeline
+/// (Bridson, Fedkiw and Anderson 2002, "Robust treatment of collisions, contact and friction for
+/// cloth animation", sections 7.2-7.4; Harmon et al. 2008, "Robust treatment of simultaneous
+/// collisions"):
 ///
 /// 1. Repulsion (self-collision): a pair closer than the thickness h at the end of the step whose
 ///    distance shrank over it gets an inelastic impulse along its normal n that cancels the
@@ -58,8 +59,8 @@
 ///
 /// Cost: the broad phase (contact/response/surface_candidates.hpp: with self-collision a
 /// hierarchy of the cloth's triangles refitted each round, without it a spatial hash of the
-/// obstacles' pairs kept from step to step), then the narrow phase of each candidate. The work arrays keep their capacity, so after the
-/// first steps nothing allocates.
+/// obstacles' pairs kept from step to step), then the narrow phase of each candidate. The work
+/// arrays keep their capacity, so after the first steps nothing allocates.
 
 #include <Eigen/Core>
 #include <algorithm>

@@ -4,6 +4,7 @@
 /// whose energy exceeds the step's start energy by more than growth times the scene's energy
 /// scale is a blow-up, reported and not committed.
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -105,7 +106,9 @@ class EnergyBound {
     const auto& colliders = system.colliders();
     if (colliders.size() == 0 || system.num_points() == 0) return 0;
     const auto& x = system.positions();
-    const auto low = x.colwise().minCoeff(), high = x.colwise().maxCoeff();
+    // Evaluated once (a lazy expression would reduce over the points at every corner).
+    const Eigen::Matrix<double, 1, 3> low = x.colwise().minCoeff().template cast<double>(),
+                                      high = x.colwise().maxCoeff().template cast<double>();
     double speed = 0;
     for (int c = 0; c < colliders.size(); ++c) {
       const auto& collider = colliders[c];
@@ -113,7 +116,7 @@ class EnergyBound {
       for (int corner = 0; corner < 8; ++corner) {
         double d2 = 0;
         for (int k = 0; k < 3; ++k) {
-          const double coordinate = double((corner >> k) & 1 ? high(k) : low(k));
+          const double coordinate = (corner >> k) & 1 ? high(k) : low(k);
           const double d = coordinate - double(collider.translation()(k));
           d2 += d * d;
         }

@@ -139,8 +139,9 @@ struct FastMassSpringOptions {
   FillOrdering ordering = FillOrdering::Auto;
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
   /// the step's start energy by more than energy_growth (S + S_c), S the scale taken at
-  /// precompute() and S_c the colliders' (integrators/detail/energy_bound.hpp), is reported as blown up (StepReport::blew_up) and not committed: the
-  /// system keeps the state before the step. Finite and >= 0; default 100; 0 turns the check off.
+  /// precompute() and S_c the colliders' (integrators/detail/energy_bound.hpp), is reported as
+  /// blown up (StepReport::blew_up) and not committed: the system keeps the state before the
+  /// step. Finite and >= 0; default 100; 0 turns the check off.
   /// Costs two passes over the springs per step.
   double energy_growth = 100;
 
