@@ -113,3 +113,43 @@ TEST_CASE("loop_stays_star_shaped: accepted loops stay positive at every time ch
   CHECK(accepted > 300);
   CHECK(refused > 300);
 }
+
+// The loop's turns about c at t = 0, from the angles of its edges (apart from the library's
+// count of crossings of a ray).
+double turns_about(const Pts& x, const V3& c, const std::vector<int>& loop) {
+  double angle = 0;
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const V3 p = x.row(loop[k]).transpose() - c;
+    const V3 q = x.row(loop[(k + 1) % loop.size()]).transpose() - c;
+    angle += std::atan2(p.cross(q).z(), p.head<2>().dot(q.head<2>()));
+  }
+  return angle / (2 * M_PI);
+}
+
+TEST_CASE("loop_stays_star_shaped: a loop that turns twice about the centre is refused") {
+  // Points on a circle visited twice around (a pentagram: 144 degrees per edge; eight points at
+  // 90 degrees per edge, two circles of radii 0.05 and 0.06): every edge turns counterclockwise
+  // by less than a half turn, as a star-shaped loop's do, but the loop winds twice, as the
+  // boundary of a fan folded over itself in a spiral does.
+  for (const int n : {5, 8}) {
+    Pts x0(n, 3);
+    for (int k = 0; k < n; ++k) {
+      const double angle = (n == 5 ? 4 * M_PI / 5 : M_PI / 2) * k;
+      const double r = n == 5 ? 0.05 : 0.05 + 0.01 * (k / 4);
+      x0.row(k) << r * std::cos(angle), r * std::sin(angle), 0.001 * k;
+    }
+    const Pts x1 = x0.rowwise() + Eigen::RowVector3d(0.003, -0.002, 0.001);
+    const V3 c0 = V3::Zero(), c1(0.003, -0.002, 0.001);
+    const std::vector<int> loop = in_order(n);
+    CAPTURE(n);
+    REQUIRE(positive_throughout(x0, x1, V3(0, 0, 1), c0, c1, loop));
+    REQUIRE(std::abs(turns_about(x0, c0, loop) - 2) < 1e-9);
+    CHECK_FALSE(loop_stays_star_shaped(x0, x1, V3(0, 0, 1), c0, c1, loop.data(), n));
+  }
+  // The same circle visited once: accepted.
+  const Pts once = polygon(5, 0.05, Eigen::Matrix3d::Identity(), V3::Zero());
+  const std::vector<int> loop = in_order(5);
+  const V3 origin = V3::Zero();
+  REQUIRE(std::abs(turns_about(once, origin, loop) - 1) < 1e-9);
+  CHECK(loop_stays_star_shaped(once, once, V3(0, 0, 1), origin, origin, loop.data(), 5));
+}
