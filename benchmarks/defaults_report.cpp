@@ -251,10 +251,11 @@ void run(const Case& c, const char* integrator_name, bool self_collision, const 
     worst_strain = std::max(worst_strain, strain(s).max);
     if (std::getenv("MS_TRACE"))
       std::fprintf(stderr,
-                   "step %d ok %d finite %d blew %d resolved %d imp %d zone %d it %d strain %.3f\n",
+                   "step %d ok %d finite %d blew %d resolved %d imp %d zone %d it %d strain %.3f "
+                   "crossings %d\n",
                    k, int(report.ok()), int(report.finite), int(report.blew_up),
                    int(report.contact_resolved), report.contact_impulses,
-                   report.contact_zone_points, report.iterations, strain(s).max);
+                   report.contact_zone_points, report.iterations, strain(s).max, n);
   }
   const Strain end = strain(s);
   std::printf(

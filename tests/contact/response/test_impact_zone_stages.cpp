@@ -1,6 +1,7 @@
 // contact/response/impact_zone_stages.hpp: the inelastic projection keeps a zone's sliding and
 // never moves a pinned point; a zone whose pins move differently makes the pass refuse the step
-// instead of moving them; and the twisting cloth (scene/contact_recipes.hpp), whose pinned ends
+// instead of moving them; a projection that finds the same collisions again hands over to the
+// rigid zones at once; and the twisting cloth (scene/contact_recipes.hpp), whose pinned ends
 // turn in opposite directions, has no crossing at any step end it commits, and every step it
 // does not commit is reported and leaves the state as it was. Crossings are
 // counted by tests/support/intersections.hpp (exact predicates, written apart from the
@@ -9,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <massspring/contact/colliders/colliders.hpp>
+#include <massspring/contact/colliders/mesh_shape.hpp>
 #include <massspring/contact/response/surface_contact.hpp>
 #include <massspring/forces/gravity.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>
@@ -102,6 +104,48 @@ TEST_CASE("impact zones: pins that move differently through a pinned face are re
       pass.resolve(t.x0, x1, v1, dt, masses, pinned, t.triangles, edges, self, colliders);
   CHECK_FALSE(r.resolved);
   CHECK(x1 == proposed);
+}
+
+// A cloth lying exactly on a mesh collider made of its own triangles (distance 0: every pair
+// keeps no gap) and pushed into it. Projecting the same linearised constraints again cannot
+// part such pairs; the projection must see that it is stuck after one round and let the rigid
+// zones carry the cloth with the obstacle, not spend its 32 rounds re-projecting a growing set.
+TEST_CASE(
+    "impact zones: a projection that finds the same collisions again hands over to rigid "
+    "zones") {
+  const int side = 6;  // 6 x 6 points, 0.1 m apart, in the plane y = 0
+  Points<double> x0(side * side, 3);
+  for (int r = 0; r < side; ++r)
+    for (int c = 0; c < side; ++c) x0.row(r * side + c) << 0.1 * c, 0, 0.1 * r;
+  Triangles triangles(2 * (side - 1) * (side - 1), 3);
+  int t = 0;
+  for (int r = 0; r + 1 < side; ++r)
+    for (int c = 0; c + 1 < side; ++c) {
+      const int i = r * side + c;
+      triangles.row(t++) << i, i + 1, i + side;
+      triangles.row(t++) << i + 1, i + side + 1, i + side;
+    }
+  const double dt = 1.0 / 30;
+  Points<double> x1 = x0;
+  x1.col(1).array() -= 0.01;  // 1 cm down, into the collider
+  x1.col(0).array() += 0.002;
+  Points<double> v1 = (x1 - x0) / dt;
+  const Vector<double> masses = Vector<double>::Constant(side * side, 0.01);
+  const std::vector<int> pinned;
+  const massspring::Edges edges = massspring::test::triangle_edges(triangles);
+  const std::optional<massspring::contact::SelfCollision<double>> self;
+  massspring::contact::ColliderSet<double> colliders;
+  colliders.add(massspring::contact::Collider<double>::mesh(x0, triangles).set_thickness(0.005));
+  colliders.begin_step(dt);
+  Pass pass;
+  pass.arm();
+  const auto r = pass.resolve(x0, x1, v1, dt, masses, pinned, triangles, edges, self, colliders);
+  CHECK(r.resolved);
+  // The impulse rounds (at most 12), one projection, one rigid round and the check after it.
+  CHECK(r.rounds <= pass.impulse_rounds() + 3);
+  CHECK(r.zone_points > 0);
+  // No point ends below the collider's plane (an independent check: the plane is y = 0).
+  CHECK(x1.col(1).minCoeff() >= -1e-12);
 }
 
 TEST_CASE("surface contact: zero rounds of detection are refused when set") {

@@ -88,11 +88,11 @@ PairSet listed(const std::vector<contact::ElementPair>& pairs) {
   PairSet out;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const auto& q = pairs[k];
-    const bool fresh = out.insert({q.kind, q.a, q.b}).second;
+    const bool fresh = out.insert({int(q.kind), q.a, q.b}).second;
     REQUIRE(fresh);  // each pair once
     if (k > 0) {
       const auto& p = pairs[k - 1];
-      REQUIRE(std::make_tuple(p.kind, p.a, p.b) < std::make_tuple(q.kind, q.a, q.b));
+      REQUIRE(std::make_tuple(int(p.kind), p.a, p.b) < std::make_tuple(int(q.kind), q.a, q.b));
     }
   }
   return out;

@@ -12,7 +12,10 @@
 ///   start (so that the pair ends at least g apart along n), and the end
 ///   positions are projected, in the mass norm, onto every constraint gathered so far in the
 ///   step. Only normal displacements change, so a zone keeps its sliding; points of infinite
-///   mass (pinned, an obstacle's, held by a solid) never move.
+///   mass (pinned, an obstacle's, held by a solid) never move. A pair found again replaces its
+///   own constraint (one constraint per pair). The projection is stuck, and the rigid stage
+///   takes over, when a round finds no new pair and no fewer collisions than the last
+///   projection round: projecting the same constraints again cannot part them.
 /// - rigid(): rigid impact zones, the last resort (Bridson, Fedkiw and Anderson 2002, section
 ///   7.4; contact/response/impact_zones.hpp). The collisions' points merge into zones; a zone
 ///   that holds an obstacle's element moves with that obstacle, one that holds pinned points with
@@ -27,7 +30,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "massspring/contact/colliders/colliders.hpp"
@@ -39,13 +44,15 @@
 
 namespace massspring::contact {
 
-/// @brief A collision continuous detection found: the pair, its time of impact in [0, 1] and the
-/// distance it keeps [m].
+/// @brief A collision continuous detection found: the pair, its time of impact in [0, 1], the
+/// distance it keeps [m] and the pair's own gap [m] (more than the distance kept when the pair
+/// started closer than its gap).
 template <class Scalar>
 struct SurfaceHit {
   ElementPair pair;
   Scalar toi;
   Scalar gap;
+  Scalar nominal_gap;
 };
 
 /// @brief The projection and the rigid zones of one pass (see the file comment); the work arrays
@@ -65,6 +72,8 @@ class ImpactZoneStages {
   /// @brief A new step: no constraint, no rigid zone.
   void begin_step() {
     projection_.clear();
+    known_.clear();
+    last_projected_hits_ = std::numeric_limits<std::size_t>::max();
     rigid_active_ = false;
   }
 
@@ -76,12 +85,36 @@ class ImpactZoneStages {
            zones_.zone_of(p[3]) == z;
   }
 
+  /// @brief What project() did.
+  enum class Projection {
+    Projected,  ///< the end positions were projected
+    Immobile,   ///< projected, but a constraint that stays violated has no point it may move
+    Stuck       ///< nothing done: no new pair and no fewer collisions than the last projection
+  };
+
   /// @brief The projection stage (see the file comment) on the hits; moved[i] is set for the
-  /// points of every hit and each point moved. @return false when a constraint that stays
-  /// violated has no point the projection may move.
-  bool project(Elements& e, const Input& in, const Hits& hits, std::vector<char>& moved,
-               SurfaceContactReport& report) {
-    for (const SurfaceHit<Scalar>& hit : hits) {
+  /// points of every hit and each point moved.
+  Projection project(Elements& e, const Input& in, const Hits& hits, std::vector<char>& moved,
+                     SurfaceContactReport& report) {
+    // Each hit's pair: an index into the constraints when it has one from an earlier round.
+    // known_ holds (pair key, constraint index), sorted by key; a round's pairs are distinct.
+    hit_constraint_.assign(hits.size(), kNew);
+    bool any_new = false;
+    for (std::size_t h = 0; h < hits.size(); ++h) {
+      const std::uint64_t key = pair_key(hits[h].pair);
+      const auto it = std::lower_bound(known_.begin(), known_.end(), key,
+                                       [](const std::pair<std::uint64_t, std::size_t>& k,
+                                          std::uint64_t v) { return k.first < v; });
+      if (it != known_.end() && it->first == key)
+        hit_constraint_[h] = it->second;
+      else
+        any_new = true;
+    }
+    if (!any_new && hits.size() >= last_projected_hits_) return Projection::Stuck;
+    last_projected_hits_ = hits.size();
+    const std::size_t known_before = known_.size();
+    for (std::size_t h = 0; h < hits.size(); ++h) {
+      const SurfaceHit<Scalar>& hit = hits[h];
       const Scalar toi = hit.toi;
       const PairStencil<Scalar> s =
           e.stencil(hit.pair, [&](int i) { return V3(e.p0(i) + toi * e.d(i)); });
@@ -96,13 +129,29 @@ class ImpactZoneStages {
         start += s.a[std::size_t(k)] * s.n.dot(e.p0(s.p[std::size_t(k)]));
       }
       c.target = std::max({Scalar(0), g, hit.gap - start}) + hit.gap / 10;
-      projection_.add(c);
+      if (hit_constraint_[h] != kNew) {
+        projection_.replace(hit_constraint_[h], c);
+      } else {
+        known_.emplace_back(pair_key(hit.pair), projection_.size());
+        projection_.add(c);
+      }
       for (int i : s.p) moved[std::size_t(i)] = 1;  // tested again, moved or not
     }
-    // A constraint holds when the pair parts by at least half its target.
+    // Merged through a scratch array: std::inplace_merge may allocate a buffer every call.
+    const auto middle = known_.begin() + std::ptrdiff_t(known_before);
+    std::sort(middle, known_.end());
+    merged_.resize(known_.size());
+    std::merge(known_.begin(), middle, middle, known_.end(), merged_.begin());
+    known_.swap(merged_);
+    // A constraint holds when the pair parts by at least half its target, or to within a
+    // thousandth of its own gap (a pair that started touching has target 0: rounding alone would
+    // keep the sweeps going).
     Scalar tolerance = std::numeric_limits<Scalar>::infinity();
     for (std::size_t c = 0; c < projection_.size(); ++c)
       tolerance = std::min(tolerance, projection_.constraint(c).target / 2);
+    Scalar least_gap = std::numeric_limits<Scalar>::infinity();
+    for (const SurfaceHit<Scalar>& hit : hits) least_gap = std::min(least_gap, hit.nominal_gap);
+    tolerance = std::max(tolerance, least_gap / 1000);
     projected_.assign(moved.size(), 0);
     const ProjectionResult<Scalar> r =
         projection_.solve(e.w, e.x0, e.x1, tolerance, kSweeps, projected_);
@@ -112,7 +161,7 @@ class ImpactZoneStages {
         ++report.projected_points;
       }
     e.hold_pushed_into_solids(in, moved);
-    return !r.immobile_violated;
+    return r.immobile_violated ? Projection::Immobile : Projection::Projected;
   }
 
   /// @brief The rigid stage (see the file comment): the hits' points join zones, and each zone
@@ -205,6 +254,15 @@ class ImpactZoneStages {
            1024 * std::numeric_limits<Scalar>::epsilon() * scale;
   }
 
+  // A pair's key: its kind, then its two element indices (each below 2^31).
+  static std::uint64_t pair_key(const ElementPair& q) {
+    return (std::uint64_t(q.kind) << 62) | (std::uint64_t(q.a) << 31) | std::uint64_t(q.b);
+  }
+  static constexpr std::size_t kNew = std::numeric_limits<std::size_t>::max();
+
+  std::vector<std::pair<std::uint64_t, std::size_t>> known_, merged_;  // (key, constraint)
+  std::vector<std::size_t> hit_constraint_;  // per hit: its constraint or kNew
+  std::size_t last_projected_hits_ = std::numeric_limits<std::size_t>::max();
   bool rigid_active_ = false;
   ImpactZones zones_;
   std::vector<int> members_, starts_;

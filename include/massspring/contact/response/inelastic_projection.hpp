@@ -80,6 +80,12 @@ class InelasticProjection {
     constraints_.push_back(c);
     lambda_.push_back(0);
   }
+  /// @brief Replaces constraint `index` by `c`, its multiplier 0: the displacement the old one
+  /// applied stays in the end positions, and the new one only adds to it.
+  void replace(std::size_t index, const Constraint& c) {
+    constraints_[index] = c;
+    lambda_[index] = 0;
+  }
   [[nodiscard]] std::size_t size() const { return constraints_.size(); }
   [[nodiscard]] const Constraint& constraint(std::size_t c) const { return constraints_[c]; }
   /// @brief Constraint c's multiplier [m] (the normal displacement it has applied, per unit of

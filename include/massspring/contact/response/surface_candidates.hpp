@@ -177,8 +177,9 @@ class SurfaceCandidates {
   // again); the others stay in order.
   void drop_moved_pairs() {
     const auto moved = [&](const ElementPair& q) {
-      return q.kind == 0 ? points_.moved[std::size_t(q.a)] || triangles_.moved[std::size_t(q.b)]
-                         : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
+      return q.kind == ElementPairKind::PointTriangle
+                 ? points_.moved[std::size_t(q.a)] || triangles_.moved[std::size_t(q.b)]
+                 : edges_.moved[std::size_t(q.a)] || edges_.moved[std::size_t(q.b)];
     };
     pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), moved), pairs_.end());
   }
@@ -376,7 +377,7 @@ class SurfaceCandidates {
     if (e.pair_gap(pe.owner, te.owner) < 0) return;
     const int i = pe.p[0];
     if (i == te.p[0] || i == te.p[1] || i == te.p[2]) return;
-    pairs_.push_back({0, v, t});
+    pairs_.push_back({ElementPairKind::PointTriangle, v, t});
   }
   void add_edge_edge(const Elements& e, int a, int b) {
     if (a == b) return;
@@ -385,7 +386,7 @@ class SurfaceCandidates {
     if (e.pair_gap(ea.owner, eb.owner) < 0) return;
     for (int i : {ea.p[0], ea.p[1]})
       if (i == eb.p[0] || i == eb.p[1]) return;
-    pairs_.push_back({1, std::min(a, b), std::max(a, b)});
+    pairs_.push_back({ElementPairKind::EdgeEdge, std::min(a, b), std::max(a, b)});
   }
 
   Scalar grow_ = 0, margin_ = 0, cell_ = 1;

@@ -40,10 +40,11 @@
 ///    norm, onto every constraint gathered so far in the step. Only normal displacements
 ///    change: a zone keeps its sliding, and pinned points, the obstacles' and points held by a
 ///    solid (infinite mass) never move. Detection runs again after each projection.
-/// 4. Rigid impact zones, the last resort, when the projection rounds are spent or a constraint
-///    cannot be met by the points that may move: the points of the collisions that remain merge
-///    into zones (a zone grows with every collision that touches it), and each zone moves
-///    rigidly over the step, keeping its linear and angular momentum (contact/response/
+/// 4. Rigid impact zones, the last resort, when the projection rounds are spent, when a round
+///    finds no new pair and no fewer collisions than the last projection (it is stuck), or when
+///    a constraint cannot be met by the points that may move: the points of the collisions that
+///    remain merge into zones (a zone grows with every collision that touches it), and each zone
+///    moves rigidly over the step, keeping its linear and angular momentum (contact/response/
 ///    impact_zones.hpp); a zone that holds an obstacle's element moves with that obstacle, one
 ///    that holds pinned points with their common displacement, one that holds a point resting
 ///    on a solid stays where it started. Rigid motion keeps the distances within a zone, so the
@@ -197,16 +198,20 @@ class SurfaceContact {
       if (stage == Stage::Impulses && round < impulse_rounds_ && hits_.size() < last_hits) {
         report.impulses += collide(mu);
         e_.hold_pushed_into_solids(in, moved_);
-      } else if (stage != Stage::Rigid && projections < projection_rounds_) {
+        continue;
+      }
+      if (stage != Stage::Rigid && projections < projection_rounds_) {
         stage = Stage::Projection;
         ++projections;
-        if (!zones_.project(e_, in, hits_, moved_, report)) projections = projection_rounds_;
-      } else {
-        stage = Stage::Rigid;
-        if (!zones_.rigid(e_, in, hits_, moved_, report)) {
-          report.resolved = false;
-          break;
-        }
+        using Projection = typename ImpactZoneStages<Scalar>::Projection;
+        const Projection done = zones_.project(e_, in, hits_, moved_, report);
+        if (done == Projection::Immobile) projections = projection_rounds_;
+        if (done != Projection::Stuck) continue;
+      }
+      stage = Stage::Rigid;
+      if (!zones_.rigid(e_, in, hits_, moved_, report)) {
+        report.resolved = false;
+        break;
       }
     }
     // Write back: positions, and velocities changed by the change of displacement over dt.
@@ -271,7 +276,7 @@ class SurfaceContact {
     int count = 0;
     for (const Pair& q : broad_.pairs()) {
       const std::array<int, 4> p = e_.points_of(q);
-      const int split = q.kind == 0 ? 1 : 2;
+      const int split = q.kind == ElementPairKind::PointTriangle ? 1 : 2;
       if (!cloth_pair(q) || apart(p, split, h, false) ||
           !balls_within<Scalar>(at(p, e_.x1), split, h))
         continue;
@@ -312,7 +317,7 @@ class SurfaceContact {
             V3(x.row(p[3]).transpose())};
   }
   [[nodiscard]] bool cloth_pair(const Pair& q) const {
-    return q.kind == 0
+    return q.kind == ElementPairKind::PointTriangle
                ? e_.points[std::size_t(q.a)].owner < 0 && e_.triangles[std::size_t(q.b)].owner < 0
                : e_.edges[std::size_t(q.a)].owner < 0 && e_.edges[std::size_t(q.b)].owner < 0;
   }
@@ -323,7 +328,7 @@ class SurfaceContact {
     for (const Pair& q : broad_.pairs()) {
       std::array<int, 4> p;
       Scalar gap = 0;
-      if (q.kind == 0) {
+      if (q.kind == ElementPairKind::PointTriangle) {
         const Element& pe = e_.points[std::size_t(q.a)];
         const Element& te = e_.triangles[std::size_t(q.b)];
         p = {pe.p[0], te.p[0], te.p[1], te.p[2]};
@@ -341,7 +346,7 @@ class SurfaceContact {
       if (zones_.same_rigid_zone(p)) continue;
       // Swept boxes farther apart than the gap along an axis, or bounding balls that stay
       // farther apart: no contact during the step.
-      const int split = q.kind == 0 ? 1 : 2;
+      const int split = q.kind == ElementPairKind::PointTriangle ? 1 : 2;
       if (apart(p, split, gap, true) ||
           !swept_balls_within<Scalar>(at(p, e_.x0), at(p, e_.x1), split, gap))
         continue;
@@ -353,15 +358,15 @@ class SurfaceContact {
         kept = start_gap(q, gap);
         if (kept < gap) r = ccd(q.kind, p, kept);
       }
-      if (r.hit) hits_.push_back({q, r.toi, kept});
+      if (r.hit) hits_.push_back({q, r.toi, kept, gap});
     }
     std::fill(moved_.begin(), moved_.end(), char(0));
     return !hits_.empty();
   }
-  CcdResult<Scalar> ccd(int kind, const std::array<int, 4>& p, Scalar gap) const {
+  CcdResult<Scalar> ccd(ElementPairKind kind, const std::array<int, 4>& p, Scalar gap) const {
     const auto x = [&](int k) { return e_.p0(p[std::size_t(k)]); };
     const auto v = [&](int k) { return e_.d(p[std::size_t(k)]); };
-    return kind == 0
+    return kind == ElementPairKind::PointTriangle
                ? point_triangle_ccd<Scalar>(x(0), x(1), x(2), x(3), v(0), v(1), v(2), v(3), gap)
                : edge_edge_ccd<Scalar>(x(0), x(1), x(2), x(3), v(0), v(1), v(2), v(3), gap);
   }
@@ -394,7 +399,7 @@ class SurfaceContact {
   // The kinetic friction of the collider on the pair's obstacle side.
   [[nodiscard]] Scalar obstacle_friction(const Pair& q) const {
     const int owner =
-        q.kind == 0
+        q.kind == ElementPairKind::PointTriangle
             ? std::max(e_.points[std::size_t(q.a)].owner, e_.triangles[std::size_t(q.b)].owner)
             : std::max(e_.edges[std::size_t(q.a)].owner, e_.edges[std::size_t(q.b)].owner);
     return owner >= 0 ? (*colliders_)[owner].kinetic_friction() : Scalar(0);

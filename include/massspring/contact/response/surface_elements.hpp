@@ -49,10 +49,16 @@ struct PairStencil {
   Scalar distance;
 };
 
-/// @brief A candidate pair: kind 0 point-triangle (a: point element, b: triangle element),
-/// kind 1 edge-edge.
+/// @brief What a candidate pair's two elements are.
+enum class ElementPairKind : int {
+  PointTriangle = 0,  ///< a: a point element, b: a triangle element
+  EdgeEdge = 1        ///< a < b: two edge elements
+};
+
+/// @brief A candidate pair of elements (indices into SurfaceElements' lists).
 struct ElementPair {
-  int kind, a, b;
+  ElementPairKind kind;
+  int a, b;
 };
 
 /// @brief The work state (see the file comment); its arrays keep their capacity.
@@ -298,7 +304,7 @@ struct SurfaceElements {
 
   // The pair's four points: the point and the triangle's corners, or both edges' ends.
   [[nodiscard]] std::array<int, 4> points_of(const Pair& q) const {
-    if (q.kind == 0) {
+    if (q.kind == ElementPairKind::PointTriangle) {
       const Element& pe = points[std::size_t(q.a)];
       const Element& te = triangles[std::size_t(q.b)];
       return {pe.p[0], te.p[0], te.p[1], te.p[2]};
@@ -311,7 +317,7 @@ struct SurfaceElements {
   template <class Pos>
   Stencil stencil(const Pair& q, Pos&& x) const {
     Stencil s;
-    if (q.kind == 0) {
+    if (q.kind == ElementPairKind::PointTriangle) {
       const Element& pe = points[std::size_t(q.a)];
       const Element& te = triangles[std::size_t(q.b)];
       s.p = {pe.p[0], te.p[0], te.p[1], te.p[2]};
