@@ -25,9 +25,8 @@ namespace massspring::contact {
 
 /// @brief Whether the closed loop of `count` (>= 1) points, rows `loop[0..count)` of x0 and x1
 /// (positions at the start and end of the step [m]), seen along the unit axis a, turns strictly
-/// counterclockwise about the centre c(t) = (1 - t) c0 + t c1 at every t in [0, 1], once: each of
-/// the
-/// three Bernstein coefficients of each edge (see the file comment) exceeds 1e-9 of
+/// counterclockwise about the centre c(t) = (1 - t) c0 + t c1 at every t in [0, 1], once: each
+/// of the three Bernstein coefficients of each edge (see the file comment) exceeds 1e-9 of
 /// (|P0|_1 + |P1|_1)(|Q0|_1 + |Q1|_1), at least 1e-9 of the product of the lengths, a margin
 /// far above the rounding of the products, and the winding number is 1.
 template <class Scalar>

@@ -40,6 +40,7 @@
 #include "massspring/contact/response/inelastic_projection.hpp"
 #include "massspring/contact/response/surface_contact_slot.hpp"
 #include "massspring/contact/response/surface_elements.hpp"
+#include "massspring/detail/merge_sorted_tail.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
@@ -137,12 +138,7 @@ class ImpactZoneStages {
       }
       for (int i : s.p) moved[std::size_t(i)] = 1;  // tested again, moved or not
     }
-    // Merged through a scratch array: std::inplace_merge may allocate a buffer every call.
-    const auto middle = known_.begin() + std::ptrdiff_t(known_before);
-    std::sort(middle, known_.end());
-    merged_.resize(known_.size());
-    std::merge(known_.begin(), middle, middle, known_.end(), merged_.begin());
-    known_.swap(merged_);
+    massspring::detail::merge_sorted_tail(known_, known_before, merged_);
     // A constraint holds when the pair parts by at least half its target, or to within a
     // thousandth of its own gap (a pair that started touching has target 0: rounding alone would
     // keep the sweeps going).

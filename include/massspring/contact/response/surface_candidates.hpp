@@ -60,6 +60,7 @@
 #include "massspring/contact/broad_phase/normal_cone_tree.hpp"
 #include "massspring/contact/response/detail/element_boxes.hpp"
 #include "massspring/contact/response/surface_elements.hpp"
+#include "massspring/detail/merge_sorted_tail.hpp"
 
 namespace massspring::contact {
 
@@ -185,12 +186,7 @@ class SurfaceCandidates {
   }
   // Sorts the pairs listed after the first `kept` (in order) and merges the two runs.
   void merge_new(std::size_t kept) {
-    if (pairs_.size() == kept) return;
-    const auto middle = pairs_.begin() + std::ptrdiff_t(kept);
-    std::sort(middle, pairs_.end(), before);
-    merged_.resize(pairs_.size());  // keeps its capacity: no allocation after the first steps
-    std::merge(pairs_.begin(), middle, middle, pairs_.end(), merged_.begin(), before);
-    pairs_.swap(merged_);
+    massspring::detail::merge_sorted_tail(pairs_, kept, merged_, before);
   }
 
   // The order of the list: by kind, then first element, then second.

@@ -145,7 +145,6 @@ class SurfaceContact {
   using Input = SurfaceContactInput<Scalar>;
   using Pair = ElementPair;
   using Stencil = PairStencil<Scalar>;
-  using Element = typename SurfaceElements<Scalar>::Element;
   struct Ops {
     SurfaceContactReport (*resolve)(SurfaceContact&, const Input&);
   };
@@ -317,32 +316,21 @@ class SurfaceContact {
             V3(x.row(p[3]).transpose())};
   }
   [[nodiscard]] bool cloth_pair(const Pair& q) const {
-    return q.kind == ElementPairKind::PointTriangle
-               ? e_.points[std::size_t(q.a)].owner < 0 && e_.triangles[std::size_t(q.b)].owner < 0
-               : e_.edges[std::size_t(q.a)].owner < 0 && e_.edges[std::size_t(q.b)].owner < 0;
+    const std::array<int, 2> owners = e_.owners_of(q);
+    return owners[0] < 0 && owners[1] < 0;
   }
 
   // 2. Continuous detection of every candidate; the hits go to hits_ (pair, time of impact).
   bool detect(bool all) {
     hits_.clear();
     for (const Pair& q : broad_.pairs()) {
-      std::array<int, 4> p;
-      Scalar gap = 0;
-      if (q.kind == ElementPairKind::PointTriangle) {
-        const Element& pe = e_.points[std::size_t(q.a)];
-        const Element& te = e_.triangles[std::size_t(q.b)];
-        p = {pe.p[0], te.p[0], te.p[1], te.p[2]};
-        gap = e_.pair_gap(pe.owner, te.owner);
-      } else {
-        const Element& ea = e_.edges[std::size_t(q.a)];
-        const Element& eb = e_.edges[std::size_t(q.b)];
-        p = {ea.p[0], ea.p[1], eb.p[0], eb.p[1]};
-        gap = e_.pair_gap(ea.owner, eb.owner);
-      }
+      const std::array<int, 4> p = e_.points_of(q);
       // A pair none of whose points moved since the last detection was clear then.
       if (!all && !(moved_[std::size_t(p[0])] || moved_[std::size_t(p[1])] ||
                     moved_[std::size_t(p[2])] || moved_[std::size_t(p[3])]))
         continue;
+      const std::array<int, 2> owners = e_.owners_of(q);
+      const Scalar gap = e_.pair_gap(owners[0], owners[1]);
       if (zones_.same_rigid_zone(p)) continue;
       // Swept boxes farther apart than the gap along an axis, or bounding balls that stay
       // farther apart: no contact during the step.
@@ -398,10 +386,8 @@ class SurfaceContact {
   }
   // The kinetic friction of the collider on the pair's obstacle side.
   [[nodiscard]] Scalar obstacle_friction(const Pair& q) const {
-    const int owner =
-        q.kind == ElementPairKind::PointTriangle
-            ? std::max(e_.points[std::size_t(q.a)].owner, e_.triangles[std::size_t(q.b)].owner)
-            : std::max(e_.edges[std::size_t(q.a)].owner, e_.edges[std::size_t(q.b)].owner);
+    const std::array<int, 2> owners = e_.owners_of(q);
+    const int owner = std::max(owners[0], owners[1]);
     return owner >= 0 ? (*colliders_)[owner].kinetic_friction() : Scalar(0);
   }
 

@@ -302,6 +302,13 @@ struct SurfaceElements {
     return b;
   }
 
+  // The owners of the pair's two elements (-1: the cloth; else the obstacle's collider).
+  [[nodiscard]] std::array<int, 2> owners_of(const Pair& q) const {
+    if (q.kind == ElementPairKind::PointTriangle)
+      return {points[std::size_t(q.a)].owner, triangles[std::size_t(q.b)].owner};
+    return {edges[std::size_t(q.a)].owner, edges[std::size_t(q.b)].owner};
+  }
+
   // The pair's four points: the point and the triangle's corners, or both edges' ends.
   [[nodiscard]] std::array<int, 4> points_of(const Pair& q) const {
     if (q.kind == ElementPairKind::PointTriangle) {
