@@ -82,6 +82,9 @@ void bind_model(SystemClass& c) {
         idle(s, "set_masses").set_masses(real_vector(x, "masses", s.num_points(), true));
       },
       "(n,) masses [kg] (a copy); assigning refactorizes at the next implicit step.");
+  c.def_property_readonly(
+      "inverse_masses", [](const System& s) { return copy_array(s.inverse_masses(), true); },
+      "(n,) inverse masses [1/kg] (a copy): 1 / m, and 0 at a pinned point (immobile).");
   c.def_property(
       "stiffness", [](const System& s) { return copy_array(s.stiffness(), true); },
       [](System& s, const py::handle& x) {

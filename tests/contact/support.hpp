@@ -20,11 +20,19 @@ inline contact::ContactGeometry<double> particles(int n, double r) {
   return g;
 }
 
+/// @brief 1 / m, and 0 at the pinned points (the rule of MassSpringSystem::inverse_masses()).
+inline Vector<double> inverse_masses(const Vector<double>& m, const std::vector<int>& pinned) {
+  Vector<double> w = m.cwiseInverse();
+  for (int i : pinned) w(i) = 0;
+  return w;
+}
+
 /// @brief Applies a handler to one step from (xs, vs) to (xe, ve).
 template <class Handler>
 void apply(Handler& h, const Pts& xs, const Pts& vs, Pts& xe, Pts& ve, double dt,
            const Vector<double>& m, const std::vector<int>& pinned = {}) {
-  h.handle(contact::CollisionStep<double>{xs, vs, xe, ve, dt, m, pinned});
+  const Vector<double> w = inverse_masses(m, pinned);
+  h.handle(contact::CollisionStep<double>{xs, vs, xe, ve, dt, m, w, pinned});
 }
 
 }  // namespace massspring::test

@@ -128,6 +128,15 @@ def test_pins_and_targets(chain):
     assert chain.pinned == [0, 1, 2]
 
 
+def test_inverse_masses_are_zero_at_pins(chain):
+    chain.masses = [1.0, 2.0, 4.0]
+    assert np.array_equal(chain.inverse_masses, [1.0, 0.5, 0.25])
+    chain.pin(1)
+    assert np.array_equal(chain.inverse_masses, [1.0, 0.0, 0.25])
+    chain.unpin(1)
+    assert np.array_equal(chain.inverse_masses, [1.0, 0.5, 0.25])
+
+
 def test_setters_round_trip(chain):
     chain.masses = [2.0, 3.0, 4.0]
     chain.stiffness = 50.0

@@ -139,6 +139,28 @@ TEST_CASE("pins are kept sorted with their targets") {
   CHECK(s.pin_targets().row(1) == s.rest_positions().row(3));
 }
 
+TEST_CASE("inverse masses are 1 / m, and 0 at the pinned points, through every change") {
+  MassSpringSystem<double> s(four_points<double>(), four_springs(), 1.0, 1.0);
+  const auto expect = [&](const std::vector<double>& w) {
+    REQUIRE(s.inverse_masses().size() == 4);
+    for (int i = 0; i < 4; ++i) CHECK(s.inverse_masses()(i) == w[std::size_t(i)]);
+  };
+  expect({1, 1, 1, 1});  // 1 kg each
+  s.set_masses(Eigen::Vector4d(1, 2, 4, 0.5));
+  expect({1, 0.5, 0.25, 2});
+  s.pin(2);
+  s.pin(0, Eigen::Vector3d(1, 1, 1));
+  expect({0, 0.5, 0, 2});
+  s.set_pin_target(0, Eigen::Vector3d(0, 1, 1));  // a target moved: nothing else
+  expect({0, 0.5, 0, 2});
+  s.unpin(2);
+  expect({0, 0.5, 0.25, 2});
+  s.set_masses(Eigen::Vector4d(2, 2, 2, 2));  // a pinned point stays immobile
+  expect({0, 0.5, 0.5, 0.5});
+  const MassSpringSystem<double> copy = s;
+  CHECK(copy.inverse_masses() == s.inverse_masses());
+}
+
 TEST_CASE("invalid input raises massspring::Error naming the item, and changes nothing") {
   const auto v = four_points<double>();
   const auto e = four_springs();

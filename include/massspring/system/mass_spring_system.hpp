@@ -14,11 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/colliders/collider_set.hpp"
-#include "massspring/contact/collision_handler.hpp"
-#include "massspring/contact/response/surface_contact_slot.hpp"
-#include "massspring/contact/self_collision.hpp"
-#include "massspring/detail/triangle_edges.hpp"
+#include "massspring/contact/contact_pipeline.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
 #include "massspring/forces/force_term.hpp"
@@ -118,6 +114,8 @@ class MassSpringSystem {
   [[nodiscard]] const Edges& springs() const { return springs_; }
   /// @brief #points masses [kg].
   [[nodiscard]] const VectorType& masses() const { return masses_; }
+  /// @brief #points inverse masses [1/kg]: 1 / m, and 0 for a pinned point (immobile).
+  [[nodiscard]] const VectorType& inverse_masses() const { return inverse_masses_; }
   /// @brief #springs stiffness [N/m].
   [[nodiscard]] const VectorType& stiffness() const { return stiffness_; }
   /// @brief #springs rest lengths [m].
@@ -279,85 +277,71 @@ class MassSpringSystem {
     return {x, v, masses_, springs_, stiffness_, rest_lengths_, damping_, definite};
   }
 
-  // ---- collision response at the end of each step (contact/collision_handler.hpp) ------------
+  // ---- contact (contact/contact_pipeline.hpp: what each call below does) --------------------
+  // None of these is a model change: no new revision, no re-factorization.
+
+  /// @brief The system's contact: handler, colliders, surface, self-collision and the surface
+  /// pass, and the response the integrators apply at the end of every step. Copies of the system
+  /// get their own.
+  [[nodiscard]] contact::ContactPipeline<Scalar>& contact() { return contact_; }
+  [[nodiscard]] const contact::ContactPipeline<Scalar>& contact() const { return contact_; }
 
   /// @brief Sets the handler the integrators apply at the end of every step (a type derived from
   /// contact::CollisionHandler<Scalar>: SimpleCollisionHandler, ContinuousTimeCollisionHandler,
-  /// HybridCollisionHandler, or your own), replacing any previous one. Copies of the system get
-  /// their own copy. Not a model change: no new revision.
+  /// HybridCollisionHandler, or your own), replacing any previous one.
   template <class Handler>
   void set_collision_handler(Handler handler) {
-    collision_handler_.set(std::move(handler));
+    contact_.set_collision_handler(std::move(handler));
   }
   /// @brief Removes the collision handler.
-  void clear_collision_handler() { collision_handler_.reset(); }
+  void clear_collision_handler() { contact_.clear_collision_handler(); }
   /// @brief The collision handler, or nullptr when there is none.
   [[nodiscard]] contact::CollisionHandler<Scalar>* collision_handler() const {
-    return collision_handler_.get();
+    return contact_.collision_handler();
   }
-
-  // ---- obstacles (contact/colliders/collider.hpp, colliders.hpp) --------------------------
 
   /// @brief Adds an obstacle (contact::Collider<Scalar>::plane(), sphere(), capsule(), box(),
   /// mesh()) that every integrator keeps the points out of; returns its index in colliders().
-  /// Not a model change: no new revision, no re-factorization.
   int add_collider(contact::Collider<Scalar> collider) {
-    return colliders_.add(std::move(collider));
+    return contact_.colliders().add(std::move(collider));
   }
   /// @brief The obstacles: move one, or change its material, between steps.
-  [[nodiscard]] contact::ColliderSet<Scalar>& colliders() { return colliders_; }
-  [[nodiscard]] const contact::ColliderSet<Scalar>& colliders() const { return colliders_; }
+  [[nodiscard]] contact::ColliderSet<Scalar>& colliders() { return contact_.colliders(); }
+  [[nodiscard]] const contact::ColliderSet<Scalar>& colliders() const {
+    return contact_.colliders();
+  }
   /// @brief True when a step has a collision response to apply (a handler, a collider, or
   /// self-collision).
-  [[nodiscard]] bool has_collision_response() const {
-    return collision_handler_.get() != nullptr || !colliders_.empty() || self_collision_;
-  }
-
-  // ---- the surface (needs contact/response/surface_contact.hpp) -----------------------------
+  [[nodiscard]] bool has_collision_response() const { return contact_.active(); }
 
   /// @brief Sets the cloth's surface: #triangles by 3 point indices (0-based). Its triangles and
   /// their edges are what self-collision and the obstacles' edges test; springs stay the
-  /// mechanics and may differ from its edges. An empty matrix removes it. Not a model change: no
-  /// new revision.
+  /// mechanics and may differ from its edges. An empty matrix removes it. Needs
+  /// contact/response/surface_contact.hpp.
   /// @throws Error naming the triangle for an index out of range, a point repeated in a
   /// triangle, or a triangle of zero area at the rest positions; nothing is changed then.
-  void set_surface(const Triangles& triangles) {
-    detail::require_surface(triangles, rest_positions_);
-    std::vector<std::pair<int, int>> edges;
-    detail::triangle_edges(triangles, edges);
-    surface_edges_.resize(Eigen::Index(edges.size()), 2);
-    for (std::size_t e = 0; e < edges.size(); ++e)
-      surface_edges_.row(Eigen::Index(e)) << edges[e].first, edges[e].second;
-    surface_ = triangles;
-    if (surface_.rows() > 0) surface_contact_.get().arm();
-  }
+  void set_surface(const Triangles& triangles) { contact_.set_surface(triangles, rest_positions_); }
   /// @brief The surface's triangles (#triangles by 3, 0-based; empty when none was set).
-  [[nodiscard]] const Triangles& surface() const { return surface_; }
+  [[nodiscard]] const Triangles& surface() const { return contact_.surface(); }
   /// @brief The surface's edges: each side of a triangle once, (i, j) with i < j, ascending.
-  [[nodiscard]] const Edges& surface_edges() const { return surface_edges_; }
+  [[nodiscard]] const Edges& surface_edges() const { return contact_.surface_edges(); }
 
   /// @brief Turns self-collision on with these parameters (contact/self_collision.hpp); it acts
-  /// on the surface, so set_surface() must have given one. Not a model change.
+  /// on the surface, so set_surface() must have given one.
   /// @throws Error for a parameter out of range, or when the system has no surface.
   void set_self_collision(const contact::SelfCollision<Scalar>& parameters) {
-    parameters.validate();
-    if (surface_.rows() == 0)
-      throw Error("self-collision: the system has no surface (set_surface(), or a scene's faces)");
-    self_collision_ = parameters;
-  }
-  /// @brief The end-of-step surface contact pass (its rounds may be set), made on first use.
-  [[nodiscard]] contact::SurfaceContact<Scalar>& surface_contact() {
-    return surface_contact_.get();
-  }
-  /// @brief The pass as the integrators run it (integrators/detail/commit_step.hpp).
-  [[nodiscard]] contact::SurfaceContactSlot<Scalar>& surface_contact_slot() {
-    return surface_contact_;
+    contact_.set_self_collision(parameters);
   }
   /// @brief Turns self-collision off (the default).
-  void clear_self_collision() { self_collision_.reset(); }
+  void clear_self_collision() { contact_.clear_self_collision(); }
   /// @brief The self-collision parameters, or nothing when it is off.
   [[nodiscard]] const std::optional<contact::SelfCollision<Scalar>>& self_collision() const {
-    return self_collision_;
+    return contact_.self_collision();
+  }
+  /// @brief The end-of-step surface contact pass (its rounds may be set), made on first use.
+  /// Needs contact/response/surface_contact.hpp.
+  [[nodiscard]] contact::SurfaceContact<Scalar>& surface_contact() {
+    return contact_.surface_contact();
   }
 
   /// @brief Identifies the model Q is built from: it changes, to a value no system had before,
@@ -469,19 +453,19 @@ class MassSpringSystem {
     return Traits::from_triplets(d.size(), d.size(), t);
   }
 
-  void touch() { revision_ = detail::next_revision(); }
+  // A new revision: masses, pins, springs or force terms changed.
+  void touch() {
+    revision_ = detail::next_revision();
+    inverse_masses_ = masses_.cwiseInverse();
+    for (int i : pinned_) inverse_masses_(i) = 0;
+  }
 
   PointsType rest_positions_ = PointsType(0, 3);
   Edges springs_ = Edges(0, 2);
-  VectorType masses_, stiffness_, rest_lengths_, damping_;
+  VectorType masses_, inverse_masses_, stiffness_, rest_lengths_, damping_;
   std::vector<int> pinned_;
   ForceSet<Scalar> forces_;
-  contact::CollisionHandlerSlot<Scalar> collision_handler_;
-  contact::ColliderSet<Scalar> colliders_;
-  Triangles surface_ = Triangles(0, 3);
-  Edges surface_edges_ = Edges(0, 2);
-  std::optional<contact::SelfCollision<Scalar>> self_collision_;
-  contact::SurfaceContactSlot<Scalar> surface_contact_;
+  contact::ContactPipeline<Scalar> contact_;
   bool damped_ = false;
   PointsType pin_targets_ = PointsType(0, 3);
   PointsType positions_ = PointsType(0, 3);

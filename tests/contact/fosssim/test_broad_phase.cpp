@@ -41,16 +41,16 @@ contact::ContactGeometry<double> random_geometry(std::mt19937& rng, int n, int E
 }
 
 // every pair whose narrow phase says "within radii + margin" at x
-std::set<Key> contacts(contact::BroadPhase<double>& bp, const contact::ContactGeometry<double>& g,
-                       const Pts& x, double margin) {
+std::set<Key> contacts(contact::FosssimBroadPhase<double>& bp,
+                       const contact::ContactGeometry<double>& g, const Pts& x, double margin) {
   std::set<Key> out;
-  bp.visit(g, x, x, margin, [&](contact::PairKind k, int i, int j) {
+  bp.visit(g, x, x, margin, [&](contact::ParticlePairKind k, int i, int j) {
     const massspring::Vector3<double> p = x.row(i).transpose();
     double d = 0, s = g.radii(i) + margin;
-    if (k == contact::PairKind::PointPoint) {
+    if (k == contact::ParticlePairKind::PointPoint) {
       d = (x.row(j) - x.row(i)).norm();
       s += g.radii(j);
-    } else if (k == contact::PairKind::PointEdge) {
+    } else if (k == contact::ParticlePairKind::PointEdge) {
       d = contact::point_segment_distance<double>(p, x.row(g.edges(j, 0)).transpose(),
                                                   x.row(g.edges(j, 1)).transpose())
               .distance;
@@ -65,13 +65,14 @@ std::set<Key> contacts(contact::BroadPhase<double>& bp, const contact::ContactGe
 
 }  // namespace
 
-TEST_CASE("BroadPhase: the grid finds exactly the contacts all pairs find, on random scenes") {
+TEST_CASE(
+    "FosssimBroadPhase: the grid finds exactly the contacts all pairs find, on random scenes") {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     CAPTURE(seed);
     std::mt19937 rng(seed);
     Pts x;
     const auto g = random_geometry(rng, 300, 150, x);
-    contact::BroadPhase<double> all(contact::BroadPhaseKind::AllPairs),
+    contact::FosssimBroadPhase<double> all(contact::BroadPhaseKind::AllPairs),
         grid(contact::BroadPhaseKind::Grid);
     for (double margin : {0.0, 0.05}) {
       const auto a = contacts(all, g, x, margin), b = contacts(grid, g, x, margin);
@@ -81,7 +82,8 @@ TEST_CASE("BroadPhase: the grid finds exactly the contacts all pairs find, on ra
   }
 }
 
-TEST_CASE("BroadPhase: grid candidates are exactly the pairs whose boxes overlap, also swept") {
+TEST_CASE(
+    "FosssimBroadPhase: grid candidates are exactly the pairs whose boxes overlap, also swept") {
   std::mt19937 rng(7);
   Pts xs;
   const auto g = random_geometry(rng, 200, 120, xs);
@@ -116,11 +118,11 @@ TEST_CASE("BroadPhase: grid candidates are exactly the pairs whose boxes overlap
         expected.insert(b < n ? Key{a, 0, b} : Key{a, 1, b - n});
     }
   // edges whose particle comes after them in item order: the pair (particle, edge) as well
-  contact::BroadPhase<double> grid(contact::BroadPhaseKind::Grid);
+  contact::FosssimBroadPhase<double> grid(contact::BroadPhaseKind::Grid);
   std::set<Key> found;
   std::vector<Key> order;
-  grid.visit(g, xs, xe, margin, [&](contact::PairKind k, int i, int j) {
-    if (k != contact::PairKind::PointPlane) found.insert({i, int(k), j});
+  grid.visit(g, xs, xe, margin, [&](contact::ParticlePairKind k, int i, int j) {
+    if (k != contact::ParticlePairKind::PointPlane) found.insert({i, int(k), j});
     order.push_back({i, int(k), j});
   });
   // the grid's boxes are a few ulps wider: a pair may only be found in addition when its boxes
@@ -131,7 +133,7 @@ TEST_CASE("BroadPhase: grid candidates are exactly the pairs whose boxes overlap
   CHECK(found.size() > 50);
 }
 
-TEST_CASE("BroadPhase: all pairs visits in FOSSSim's order and skips incident edges") {
+TEST_CASE("FosssimBroadPhase: all pairs visits in FOSSSim's order and skips incident edges") {
   contact::ContactGeometry<double> g = massspring::test::particles(3, 0.1);
   g.edges.resize(1, 2);
   g.edges << 0, 1;
@@ -139,8 +141,8 @@ TEST_CASE("BroadPhase: all pairs visits in FOSSSim's order and skips incident ed
   g.planes.push_back({v3(0, 0), v3(0, 1)});
   Pts x = Pts::Zero(3, 3);
   std::vector<Key> order;
-  contact::BroadPhase<double> all;
-  all.visit(g, x, x, 0.0, [&](contact::PairKind k, int i, int j) {
+  contact::FosssimBroadPhase<double> all;
+  all.visit(g, x, x, 0.0, [&](contact::ParticlePairKind k, int i, int j) {
     order.push_back({i, int(k), j});
   });
   const std::vector<Key> expected = {{0, 0, 1}, {0, 0, 2}, {0, 2, 0}, {1, 0, 2},

@@ -40,6 +40,21 @@ struct TwoTriangles {
   }
 };
 
+// SurfaceContact::resolve() over the step x0 -> (x1, v1) from rest, the surface's edges those of
+// its triangles, the colliders after their begin_step(dt).
+massspring::contact::SurfaceContactReport resolve(
+    Pass& pass, const Points<double>& x0, Points<double>& x1, Points<double>& v1, double dt,
+    const Vector<double>& masses, const std::vector<int>& pinned, const Triangles& triangles,
+    const std::optional<massspring::contact::SelfCollision<double>>& self,
+    const massspring::contact::ColliderSet<double>& colliders) {
+  const Points<double> v0 = Points<double>::Zero(x0.rows(), 3);
+  Vector<double> w = masses.cwiseInverse();
+  for (int i : pinned) w(i) = 0;
+  const massspring::contact::CollisionStep<double> step{x0, v0, x1, v1, dt, masses, w, pinned};
+  const massspring::Edges edges = massspring::test::triangle_edges(triangles);
+  return pass.resolve({step, triangles, edges, self, colliders});
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -55,15 +70,12 @@ TEST_CASE(
   const Points<double> proposed = x1;
   const Vector<double> masses = Vector<double>::Constant(6, 0.01);
   const std::vector<int> pinned = {0, 1, 2};
-  const massspring::Edges edges = massspring::test::triangle_edges(t.triangles);
   const std::optional<massspring::contact::SelfCollision<double>> self =
       massspring::contact::SelfCollision<double>{0.004, 0.5};
   massspring::contact::ColliderSet<double> colliders;
   Pass pass;
-  pass.arm();
   pass.set_impulse_rounds(0);  // straight to the projection
-  const auto r =
-      pass.resolve(t.x0, x1, v1, dt, masses, pinned, t.triangles, edges, self, colliders);
+  const auto r = resolve(pass, t.x0, x1, v1, dt, masses, pinned, t.triangles, self, colliders);
   CHECK(r.resolved);
   CHECK(r.projected_points == 3);
   CHECK(r.zone_points == 0);
@@ -78,7 +90,8 @@ TEST_CASE(
     CHECK(std::abs(x1(i, 2) - proposed(i, 2)) <= 1e-12);
     CHECK((v1.row(i) - (x1.row(i) - t.x0.row(i)) / dt).norm() <= 1e-12);
   }
-  CHECK(massspring::test::count_crossings(x1, t.triangles, edges) == 0);
+  CHECK(massspring::test::count_crossings(x1, t.triangles,
+                                          massspring::test::triangle_edges(t.triangles)) == 0);
 }
 
 TEST_CASE("impact zones: pins that move differently through a pinned face are refused, not moved") {
@@ -94,14 +107,11 @@ TEST_CASE("impact zones: pins that move differently through a pinned face are re
   const Points<double> proposed = x1;
   const Vector<double> masses = Vector<double>::Constant(6, 0.01);
   const std::vector<int> pinned = {0, 1, 2, 3, 4, 5};
-  const massspring::Edges edges = massspring::test::triangle_edges(t.triangles);
   const std::optional<massspring::contact::SelfCollision<double>> self =
       massspring::contact::SelfCollision<double>{};
   massspring::contact::ColliderSet<double> colliders;
   Pass pass;
-  pass.arm();
-  const auto r =
-      pass.resolve(t.x0, x1, v1, dt, masses, pinned, t.triangles, edges, self, colliders);
+  const auto r = resolve(pass, t.x0, x1, v1, dt, masses, pinned, t.triangles, self, colliders);
   CHECK_FALSE(r.resolved);
   CHECK(x1 == proposed);
 }
@@ -132,14 +142,12 @@ TEST_CASE(
   Points<double> v1 = (x1 - x0) / dt;
   const Vector<double> masses = Vector<double>::Constant(side * side, 0.01);
   const std::vector<int> pinned;
-  const massspring::Edges edges = massspring::test::triangle_edges(triangles);
   const std::optional<massspring::contact::SelfCollision<double>> self;
   massspring::contact::ColliderSet<double> colliders;
   colliders.add(massspring::contact::Collider<double>::mesh(x0, triangles).set_thickness(0.005));
   colliders.begin_step(dt);
   Pass pass;
-  pass.arm();
-  const auto r = pass.resolve(x0, x1, v1, dt, masses, pinned, triangles, edges, self, colliders);
+  const auto r = resolve(pass, x0, x1, v1, dt, masses, pinned, triangles, self, colliders);
   CHECK(r.resolved);
   // The impulse rounds (at most 12), one projection, one rigid round and the check after it.
   CHECK(r.rounds <= pass.impulse_rounds() + 3);

@@ -207,7 +207,7 @@ int check_self(const contact::SurfaceElements<double>& e,
 
 struct Crumpled {
   massspring::Points<double> x0, x1, v;
-  massspring::Vector<double> masses;
+  massspring::Vector<double> masses, inverse_masses;  // nothing pinned
   massspring::Triangles triangles;
   massspring::Edges edges;
 };
@@ -227,6 +227,7 @@ Crumpled crumpled(std::mt19937& rng) {
     for (int k = 0; k < 3; ++k) c.x1(i, k) += jitter(rng);
   c.v = massspring::Points<double>::Zero(c.x0.rows(), 3);
   c.masses = massspring::Vector<double>::Ones(c.x0.rows());
+  c.inverse_masses = c.masses;
   c.triangles.resize(Eigen::Index(cloth.faces.size()), 3);
   for (std::size_t f = 0; f < cloth.faces.size(); ++f)
     for (int k = 0; k < 3; ++k) c.triangles(Eigen::Index(f), k) = cloth.faces[f][std::size_t(k)];
@@ -265,8 +266,9 @@ TEST_CASE("SurfaceCandidates: with self-collision, every pair that can meet is l
                         .transpose();
     }
   }
-  const contact::SurfaceContactInput<double> in{c.x0,   c.x1,        c.v,   1.0 / 30, c.masses,
-                                                pinned, c.triangles, edges, self,     colliders};
+  const contact::CollisionStep<double> one{
+      c.x0, c.v, c.x1, c.v, 1.0 / 30, c.masses, c.inverse_masses, pinned};
+  const contact::SurfaceContactInput<double> in{one, c.triangles, edges, self, colliders};
   contact::SurfaceElements<double> e;
   e.setup(in);
   const double grow = 0.002, margin = 0.002;
@@ -351,8 +353,9 @@ TEST_CASE("SurfaceCandidates: without self-collision, every pair with an obstacl
   massspring::Triangles faces(4, 3);
   faces << 0, 1, 2, 0, 1, 3, 1, 2, 3, 2, 0, 3;
   colliders.add(Collider::mesh(mesh, faces));
-  const contact::SurfaceContactInput<double> in{c.x0,   c.x1,        c.v,   1.0 / 30, c.masses,
-                                                pinned, c.triangles, edges, off,      colliders};
+  const contact::CollisionStep<double> one{
+      c.x0, c.v, c.x1, c.v, 1.0 / 30, c.masses, c.inverse_masses, pinned};
+  const contact::SurfaceContactInput<double> in{one, c.triangles, edges, off, colliders};
   contact::SurfaceElements<double> e;
   e.setup(in);
   const double grow = 0.002, margin = 0.002;
@@ -423,8 +426,9 @@ TEST_CASE("SurfaceCandidates: next_step() over steps keeps every overlapping pai
   contact::SurfaceCandidates<double> broad;
   // One step: the last end positions start it, and every point moves by up to `step` [m].
   const auto step = [&](double by_most) {
-    const contact::SurfaceContactInput<double> in{c.x0,   c.x1,        c.v,   1.0 / 30, c.masses,
-                                                  pinned, c.triangles, edges, self,     colliders};
+    const contact::CollisionStep<double> one{
+        c.x0, c.v, c.x1, c.v, 1.0 / 30, c.masses, c.inverse_masses, pinned};
+    const contact::SurfaceContactInput<double> in{one, c.triangles, edges, self, colliders};
     e.setup(in);
     broad.next_step(e, grow, margin);
     const PairSet want = brute_force(e, grow);

@@ -19,18 +19,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "massspring/contact/aligned_box.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
-
-/// @brief An axis-aligned box [lo, hi].
-template <class Scalar>
-struct AlignedBox3 {
-  Vector3<Scalar> lo, hi;
-  [[nodiscard]] bool overlaps(const AlignedBox3& o) const {
-    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
-  }
-};
 
 /// @brief Boxes 0..m-1 stored for overlap queries.
 template <class Scalar>

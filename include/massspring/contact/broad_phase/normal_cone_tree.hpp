@@ -54,7 +54,7 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/contact/aligned_box.hpp"
 #include "massspring/contact/broad_phase/normal_bounds.hpp"
 #include "massspring/contact/broad_phase/star_contour.hpp"
 #include "massspring/types.hpp"
@@ -220,7 +220,7 @@ class NormalConeTree {
       n.right = right;
       const Box& l = nodes_[std::size_t(left)].home;
       const Box& r = nodes_[std::size_t(right)].home;
-      n.home = {l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi)};
+      n.home = l.merged(r);
     } else {
       leaf_of_[std::size_t(order_[std::size_t(b)])] = id;
       const Triangle& c = triangles_[std::size_t(order_[std::size_t(b)])];
@@ -372,8 +372,7 @@ class NormalConeTree {
       return;
     }
     const std::size_t l = std::size_t(n.left), r = std::size_t(n.right);
-    n.box = {nodes_[l].box.lo.cwiseMin(nodes_[r].box.lo),
-             nodes_[l].box.hi.cwiseMax(nodes_[r].box.hi)};
+    n.box = nodes_[l].box.merged(nodes_[r].box);
     normals_[k] = NormalBounds<Scalar>::merged(normals_[l], normals_[r]);
   }
 

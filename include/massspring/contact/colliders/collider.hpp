@@ -257,29 +257,23 @@ class Collider {
     if (far(x_start, x_end, slop)) return false;
     Scalar phi = 0;
     switch (shape_) {
-      case ColliderShape::Plane:  // world normal: no change of frame
+      // local_phi() in the world frame, for the two shapes a rotation leaves as they are: no
+      // change of frame. A point at a sphere's centre takes local_phi()'s normal e_z, rotated.
+      case ColliderShape::Plane:
         phi = zone_.normal.dot(x_end - end_translation_);
         c.normal = zone_.normal;
         break;
-      case ColliderShape::Sphere: {  // rotation-invariant
+      case ColliderShape::Sphere: {
         const V3 p = x_end - end_translation_;
         const Scalar r = p.norm();
         phi = r - radius_;
         c.normal = r > 0 ? V3(p / r) : V3(end_rotation_.col(2));
         break;
       }
-      case ColliderShape::Capsule: {
-        const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
-        const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
-        phi = d.distance - radius_;
-        c.normal =
-            end_rotation_ * (d.distance > 0 ? V3(-d.n / d.distance) : perpendicular<Scalar>(axis_));
-        break;
-      }
+      case ColliderShape::Capsule:
       case ColliderShape::Box: {
-        const V3 p = end_rotation_.transpose() * (x_end - end_translation_);
         V3 n_local;
-        phi = geometry_->phi(*this, p, n_local);
+        phi = local_phi(end_rotation_.transpose() * (x_end - end_translation_), n_local);
         c.normal = end_rotation_ * n_local;
         break;
       }

@@ -41,6 +41,8 @@
 #include <vector>
 
 #include "massspring/contact/colliders/collider.hpp"
+#include "massspring/contact/collision_step.hpp"
+#include "massspring/contact/coulomb_friction.hpp"
 #include "massspring/types.hpp"
 
 namespace massspring::contact {
@@ -94,14 +96,12 @@ class ColliderSet {
   }
 
   /// @brief The end-of-step response (see the file comment) of every point not pinned, from the
-  /// start positions x_start to the end state (x_end, v_end), all #points by 3; masses [kg] weigh
-  /// the impulses impulse() reports; pinned is ascending. Calls begin_step(dt). Allocates nothing.
+  /// step's start positions to its end state (step.x_end, step.v_end, changed in place); the
+  /// masses weigh the impulses impulse() reports. Calls begin_step(step.dt). Allocates nothing.
   /// Without `friction`, the colliders act as frictionless (FastMassSpring's end-of-step state
   /// already holds the friction its contact term applied).
-  void respond(const Points<Scalar>& x_start, Points<Scalar>& x_end, Points<Scalar>& v_end,
-               Scalar dt, const Vector<Scalar>& masses, const std::vector<int>& pinned,
-               bool friction = true) {
-    if (ops_) ops_->respond(*this, x_start, x_end, v_end, dt, masses, pinned, friction);
+  void respond(const CollisionStep<Scalar>& step, bool friction = true) {
+    if (ops_) ops_->respond(*this, step, friction);
   }
 
   /// @brief The position response of one point (3 coordinates each), x_end moved in place:
@@ -132,8 +132,7 @@ class ColliderSet {
   // The response's entry points (see the file comment): add() stores their addresses, and only
   // add() names them, so that only a program that adds a collider instantiates them.
   struct Ops {
-    void (*respond)(ColliderSet&, const Points<Scalar>&, Points<Scalar>&, Points<Scalar>&, Scalar,
-                    const Vector<Scalar>&, const std::vector<int>&, bool);
+    void (*respond)(ColliderSet&, const CollisionStep<Scalar>&, bool);
     void (*project)(const ColliderSet&, const Scalar*, Scalar*, Scalar);
     void (*begin_step)(ColliderSet&, Scalar);
     void (*end_step)(ColliderSet&);
@@ -148,33 +147,25 @@ class ColliderSet {
   static void undo_all(ColliderSet& set) {
     for (auto& c : set.colliders_) c.undo_step();
   }
-  static void respond_all(ColliderSet& set, const Points<Scalar>& x_start, Points<Scalar>& x_end,
-                          Points<Scalar>& v_end, Scalar dt, const Vector<Scalar>& masses,
-                          const std::vector<int>& pinned, bool friction) {
-    set.respond_impl(x_start, x_end, v_end, dt, masses, pinned, friction);
+  static void respond_all(ColliderSet& set, const CollisionStep<Scalar>& step, bool friction) {
+    set.respond_impl(step, friction);
   }
   static void project_one(const ColliderSet& set, const Scalar* x_start, Scalar* x_end, Scalar dt) {
     set.project_impl(x_start, x_end, dt);
   }
 
-  void respond_impl(const Points<Scalar>& x_start, Points<Scalar>& x_end, Points<Scalar>& v_end,
-                    Scalar dt, const Vector<Scalar>& masses, const std::vector<int>& pinned,
-                    bool friction) {
-    begin_all(*this, dt);
+  void respond_impl(const CollisionStep<Scalar>& step, bool friction) {
+    begin_all(*this, step.dt);
     for (V3& j : impulses_) j.setZero();
-    std::size_t next_pin = 0;
-    for (int i = 0; i < int(x_start.rows()); ++i) {
-      if (next_pin < pinned.size() && pinned[next_pin] == i) {
-        ++next_pin;
-        continue;
-      }
-      const V3 xs = x_start.row(i).transpose();
-      V3 xe = x_end.row(i).transpose();
+    for (int i = 0; i < int(step.x_start.rows()); ++i) {
+      if (step.inverse_masses(i) == 0) continue;  // pinned
+      const V3 xs = step.x_start.row(i).transpose();
+      V3 xe = step.x_end.row(i).transpose();
       if (!near(xs, xe)) continue;
-      V3 ve = v_end.row(i).transpose();
-      push(xs, xe, &ve, dt, masses(i), impulses_.data(), friction);
-      x_end.row(i) = xe.transpose();
-      v_end.row(i) = ve.transpose();
+      V3 ve = step.v_end.row(i).transpose();
+      push(xs, xe, &ve, step.dt, step.masses(i), impulses_.data(), friction);
+      step.x_end.row(i) = xe.transpose();
+      step.v_end.row(i) = ve.transpose();
     }
   }
 
@@ -209,14 +200,10 @@ class ColliderSet {
         moved = true;
         pushed = ci;
         if (friction && c.static_friction() > 0) {
-          // Sticking, the common case, needs no square root.
           const V3 d_t = d - d.dot(k.normal) * k.normal;
-          const Scalar cone = c.static_friction() * k.depth;
-          const Scalar len2 = d_t.squaredNorm();
-          if (len2 <= cone * cone)
-            xe -= d_t;
-          else
-            xe -= (c.kinetic_friction() * k.depth / std::sqrt(len2)) * d_t;
+          const Scalar f = coulomb_removed_fraction(d_t.squaredNorm(), k.depth, c.static_friction(),
+                                                    c.kinetic_friction());
+          xe -= f * d_t;
         }
       }
       if (ve) {
@@ -227,12 +214,12 @@ class ColliderSet {
           const Scalar j = -(1 + e) * vn;
           V3 vt = vr - vn * k.normal;
           if (friction) {
-            const Scalar cone = c.static_friction() * j;
-            const Scalar len2 = vt.squaredNorm();
-            if (len2 <= cone * cone)
+            const Scalar f = coulomb_removed_fraction(vt.squaredNorm(), j, c.static_friction(),
+                                                      c.kinetic_friction());
+            if (f == 1)
               vt.setZero();
             else
-              vt *= 1 - c.kinetic_friction() * j / std::sqrt(len2);
+              vt *= 1 - f;
           }
           const V3 after = k.velocity - e * vn * k.normal + vt;
           if (impulses) impulses[ci] += mass * (after - *ve);

@@ -15,6 +15,7 @@
 #include <numeric>
 #include <vector>
 
+#include "massspring/contact/aligned_box.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -87,7 +88,7 @@ class TriangleMesh {
     stack[top++] = 0;
     while (top > 0) {
       const Node& node = nodes_[std::size_t(stack[--top])];
-      if (box_distance2(node, p) >= best) continue;
+      if (node.box.squared_distance(p) >= best) continue;
       if (node.count > 0) {
         for (int s = node.first; s < node.first + node.count; ++s) {
           const int t = triangle_of_slot_[std::size_t(s)];
@@ -111,14 +112,14 @@ class TriangleMesh {
   /// @brief The first crossing (smallest t in [0, 1]) of the segment p0 -> p1 with a triangle;
   /// false when there is none.
   bool first_crossing(const V3& p0, const V3& p1, Scalar& t_hit, int& triangle) const {
-    const V3 lo = p0.cwiseMin(p1), hi = p0.cwiseMax(p1);
+    const AlignedBox3<Scalar> path{p0.cwiseMin(p1), p0.cwiseMax(p1)};
     Scalar best = std::numeric_limits<Scalar>::infinity();
     int stack[kStack];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
       const Node& node = nodes_[std::size_t(stack[--top])];
-      if ((node.hi.array() < lo.array()).any() || (node.lo.array() > hi.array()).any()) continue;
+      if (!node.box.overlaps(path)) continue;
       if (node.count > 0) {
         for (int s = node.first; s < node.first + node.count; ++s) {
           const int t = triangle_of_slot_[std::size_t(s)];
@@ -144,40 +145,29 @@ class TriangleMesh {
   static constexpr int kLeaf = 4;  // triangles per leaf at most
 
   struct Node {
-    V3 lo, hi;
+    AlignedBox3<Scalar> box;
     int first = 0;  // leaf: first slot; inner: index of the left child (right = first + 1)
     int count = 0;  // leaf: number of triangles; inner: 0
   };
 
-  static Scalar box_distance2(const Node& node, const V3& p) {
-    const V3 d = (node.lo - p).cwiseMax(p - node.hi).cwiseMax(V3::Zero());
-    return d.squaredNorm();
-  }
-
   // Fills node `index` with the subtree over order[begin, end); an inner node's two children are
   // appended next to each other (left = first, right = first + 1).
   void build(std::vector<int>& order, int begin, int end, int index) {
-    V3 lo = V3::Constant(std::numeric_limits<Scalar>::infinity()), hi = -lo;
-    V3 clo = lo, chi = hi;  // the centroids' box
+    auto box = AlignedBox3<Scalar>::empty();
+    auto centroids = AlignedBox3<Scalar>::empty();
     for (int s = begin; s < end; ++s) {
       const int t = order[std::size_t(s)];
-      for (int k = 0; k < 3; ++k) {
-        lo = lo.cwiseMin(vertex(t, k));
-        hi = hi.cwiseMax(vertex(t, k));
-      }
-      const V3 c = centroid(t);
-      clo = clo.cwiseMin(c);
-      chi = chi.cwiseMax(c);
+      for (int k = 0; k < 3; ++k) box.extend(vertex(t, k));
+      centroids.extend(centroid(t));
     }
-    nodes_[std::size_t(index)].lo = lo;
-    nodes_[std::size_t(index)].hi = hi;
+    nodes_[std::size_t(index)].box = box;
     if (end - begin <= kLeaf) {
       nodes_[std::size_t(index)].first = begin;
       nodes_[std::size_t(index)].count = end - begin;
       return;
     }
     int axis = 0;
-    (chi - clo).maxCoeff(&axis);
+    (centroids.hi - centroids.lo).maxCoeff(&axis);
     const int mid = begin + (end - begin) / 2;
     std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                      [&](int a, int b) { return centroid(a)(axis) < centroid(b)(axis); });

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// @brief BroadPhase: the candidate pairs a narrow phase tests (particle-particle, particle-edge,
-/// particle-plane), either every pair (FOSSSim's AllPairsDetector) or a sorted uniform grid
-/// (our `contest` detector): O(m log m + k) per call for m (cell, box) entries and k candidates,
-/// m = O(n) when boxes are about the median size.
+/// @brief FosssimBroadPhase: the candidate pairs a narrow phase tests (particle-particle,
+/// particle-edge, particle-plane), either every pair (FOSSSim's AllPairsDetector) or a sorted
+/// uniform grid (our `contest` detector): O(m log m + k) per call for m (cell, box) entries and k
+/// candidates, m = O(n) when boxes are about the median size.
 ///
 /// A candidate's boxes enclose the motion from the start positions qs to the end positions qe
 /// (straight lines stay inside the box of their end points), grown by each primitive's radius and
@@ -37,14 +37,14 @@ enum class BroadPhaseKind {
 };
 
 /// @brief The kind of a candidate pair: (particle, particle), (particle, edge), (particle, plane).
-enum class PairKind { PointPoint, PointEdge, PointPlane };
+enum class ParticlePairKind { PointPoint, PointEdge, PointPlane };
 
 /// @brief Finds candidate pairs; holds its work arrays, so calls after the first allocate only
 /// when the number of candidates grows.
 template <class Scalar>
-class BroadPhase {
+class FosssimBroadPhase {
  public:
-  explicit BroadPhase(BroadPhaseKind kind = BroadPhaseKind::AllPairs) : kind_(kind) {}
+  explicit FosssimBroadPhase(BroadPhaseKind kind = BroadPhaseKind::AllPairs) : kind_(kind) {}
 
   [[nodiscard]] BroadPhaseKind kind() const { return kind_; }
   void set_kind(BroadPhaseKind kind) {
@@ -52,8 +52,8 @@ class BroadPhase {
     cached_ = false;
   }
 
-  /// @brief Calls `visit(PairKind, i, j)` for every candidate: (PointPoint, i, j) with i < j,
-  /// (PointEdge, i, e) with e not incident to i, (PointPlane, i, h).
+  /// @brief Calls `visit(ParticlePairKind, i, j)` for every candidate: (PointPoint, i, j) with i <
+  /// j, (PointEdge, i, e) with e not incident to i, (PointPlane, i, h).
   /// @param[in] g       the primitives (radii, edges, planes)
   /// @param[in] qs, qe  #particles by 3 positions at the start and at the end of the motion [m]
   ///                    (pass the same array twice for a static test)
@@ -66,10 +66,10 @@ class BroadPhase {
     const int E = g.num_edges(), H = g.num_planes();
     if (kind_ == BroadPhaseKind::AllPairs) {
       for (int i = 0; i < n; ++i) {
-        for (int j = i + 1; j < n; ++j) visit(PairKind::PointPoint, i, j);
+        for (int j = i + 1; j < n; ++j) visit(ParticlePairKind::PointPoint, i, j);
         for (int e = 0; e < E; ++e)
-          if (g.edges(e, 0) != i && g.edges(e, 1) != i) visit(PairKind::PointEdge, i, e);
-        for (int h = 0; h < H; ++h) visit(PairKind::PointPlane, i, h);
+          if (g.edges(e, 0) != i && g.edges(e, 1) != i) visit(ParticlePairKind::PointEdge, i, e);
+        for (int h = 0; h < H; ++h) visit(ParticlePairKind::PointPlane, i, h);
       }
       return;
     }
@@ -89,18 +89,19 @@ class BroadPhase {
       }
     }
     if (!ordered) {
-      for (const auto& p : pp_) visit(PairKind::PointPoint, p.first, p.second);
-      for (const auto& p : pe_) visit(PairKind::PointEdge, p.first, p.second);
+      for (const auto& p : pp_) visit(ParticlePairKind::PointPoint, p.first, p.second);
+      for (const auto& p : pe_) visit(ParticlePairKind::PointEdge, p.first, p.second);
       for (int i = 0; i < n; ++i)
-        for (int h = 0; h < H; ++h) visit(PairKind::PointPlane, i, h);
+        for (int h = 0; h < H; ++h) visit(ParticlePairKind::PointPlane, i, h);
       return;
     }
     std::size_t a = 0, b = 0;
     for (int i = 0; i < n; ++i) {
       for (; a < pp_.size() && pp_[a].first == i; ++a)
-        visit(PairKind::PointPoint, i, pp_[a].second);
-      for (; b < pe_.size() && pe_[b].first == i; ++b) visit(PairKind::PointEdge, i, pe_[b].second);
-      for (int h = 0; h < H; ++h) visit(PairKind::PointPlane, i, h);
+        visit(ParticlePairKind::PointPoint, i, pp_[a].second);
+      for (; b < pe_.size() && pe_[b].first == i; ++b)
+        visit(ParticlePairKind::PointEdge, i, pe_[b].second);
+      for (int h = 0; h < H; ++h) visit(ParticlePairKind::PointPlane, i, h);
     }
   }
 

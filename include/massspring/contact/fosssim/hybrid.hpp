@@ -58,8 +58,8 @@ class HybridCollisionHandler final : public detail::ImpulseHandlerBase<Scalar> {
       vm_ = ve_;
       const ImpulseTarget<Scalar> target{vm_, &qm_, s.dt};
       for (const Hit& h : hits_)
-        continuous_time_impulse(this->geometry_, h.kind, h.i, h.j, h.toi, qs, qe_, s.dt, this->w_,
-                                this->cor_, target);
+        continuous_time_impulse(this->geometry_, h.kind, h.i, h.j, h.toi, qs, qe_, s.dt,
+                                s.inverse_masses, this->cor_, target);
       qe_.swap(qm_);
       ve_.swap(vm_);
       detect(qs, qe_);
@@ -72,17 +72,19 @@ class HybridCollisionHandler final : public detail::ImpulseHandlerBase<Scalar> {
 
  private:
   struct Hit {
-    PairKind kind;
+    ParticlePairKind kind;
     int i, j;
     TimeOfImpact<Scalar> toi;
   };
 
   void detect(const Points<Scalar>& qs, const Points<Scalar>& qe) {
     hits_.clear();
-    this->broad_phase_.visit(this->geometry_, qs, qe, Scalar(0), [&](PairKind kind, int i, int j) {
-      const TimeOfImpact<Scalar> hit = continuous_time_test(this->geometry_, kind, i, j, qs, qe);
-      if (hit.hit) hits_.push_back({kind, i, j, hit});
-    });
+    this->broad_phase_.visit(this->geometry_, qs, qe, Scalar(0),
+                             [&](ParticlePairKind kind, int i, int j) {
+                               const TimeOfImpact<Scalar> hit =
+                                   continuous_time_test(this->geometry_, kind, i, j, qs, qe);
+                               if (hit.hit) hits_.push_back({kind, i, j, hit});
+                             });
   }
 
   /// @brief Grows the zones with the collisions in hits_; true when they changed.
@@ -91,15 +93,15 @@ class HybridCollisionHandler final : public detail::ImpulseHandlerBase<Scalar> {
     for (const Hit& h : hits_) {
       std::array<int, 3> p{h.i, 0, 0};
       int count = 1;
-      if (h.kind == PairKind::PointPoint) {
+      if (h.kind == ParticlePairKind::PointPoint) {
         p[1] = h.j;
         count = 2;
-      } else if (h.kind == PairKind::PointEdge) {
+      } else if (h.kind == ParticlePairKind::PointEdge) {
         p[1] = this->geometry_.edges(h.j, 0);
         p[2] = this->geometry_.edges(h.j, 1);
         count = 3;
       }
-      changed = zones_.add(p, count, h.kind == PairKind::PointPlane) || changed;
+      changed = zones_.add(p, count, h.kind == ParticlePairKind::PointPlane) || changed;
     }
     return changed;
   }
@@ -115,7 +117,7 @@ class HybridCollisionHandler final : public detail::ImpulseHandlerBase<Scalar> {
         const int* m = members_.data() + starts_[z];
         const int count = starts_[z + 1] - starts_[z];
         bool fixed = zones_.has_plane(zones_.zone_of(m[0]));
-        for (int k = 0; k < count && !fixed; ++k) fixed = this->w_(m[k]) == 0;
+        for (int k = 0; k < count && !fixed; ++k) fixed = s.inverse_masses(m[k]) == 0;
         rigid_zone_motion(m, count, fixed, s.masses, qs, s.dt, qe_, ve_);
       }
       detect(qs, qe_);

@@ -103,9 +103,9 @@ class PenaltyForce {
     constexpr Scalar tiny = Scalar(1e-10);  // FOSSSim's cut-off: no direction below it
     broad_phase_.visit(
         g, x, x, thickness_,
-        [&](PairKind kind, int i, int j) {
+        [&](ParticlePairKind kind, int i, int j) {
           const Vector3<Scalar> xi = x.row(i).transpose();
-          if (kind == PairKind::PointPoint) {
+          if (kind == ParticlePairKind::PointPoint) {
             const Vector3<Scalar> n = x.row(j).transpose() - xi;
             const Scalar s = g.radii(i) + g.radii(j) + thickness_;
             const Scalar d2 = n.squaredNorm();
@@ -113,7 +113,7 @@ class PenaltyForce {
             const Scalar d = std::sqrt(d2);
             if (d < tiny) return;
             emit(i, Vector3<Scalar>((k_ * (d - s) / d) * n), j, Scalar(1), -1, Scalar(0));
-          } else if (kind == PairKind::PointEdge) {
+          } else if (kind == ParticlePairKind::PointEdge) {
             const int a = g.edges(j, 0), b = g.edges(j, 1);
             const auto r =
                 point_segment_distance<Scalar>(xi, x.row(a).transpose(), x.row(b).transpose());
@@ -135,7 +135,7 @@ class PenaltyForce {
   ContactGeometry<Scalar> geometry_;
   Scalar k_ = 0, thickness_ = 0;
   // work arrays only: the force is a function of x
-  mutable BroadPhase<Scalar> broad_phase_;
+  mutable FosssimBroadPhase<Scalar> broad_phase_;
   mutable std::vector<Contact> contacts_;
   mutable Points<Scalar> x_;
   mutable bool cached_ = false;

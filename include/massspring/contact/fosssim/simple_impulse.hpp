@@ -46,18 +46,18 @@ class SimpleCollisionHandler final : public detail::ImpulseHandlerBase<Scalar> {
     const Points<Scalar>& x = s.x_end;
     Points<Scalar>& v = s.v_end;
     const ImpulseTarget<Scalar> target{v};
-    const Vector<Scalar>& w = this->w_;
+    const Vector<Scalar>& w = s.inverse_masses;
     const Scalar e = this->cor_;
-    this->broad_phase_.visit(g, x, x, Scalar(0), [&](PairKind kind, int i, int j) {
+    this->broad_phase_.visit(g, x, x, Scalar(0), [&](ParticlePairKind kind, int i, int j) {
       const Vector3<Scalar> xi = this->row(x, i), vi = this->row(v, i);
-      if (kind == PairKind::PointPoint) {
+      if (kind == ParticlePairKind::PointPoint) {
         const Vector3<Scalar> n = this->row(x, j) - xi;
         const Scalar s2 = g.radii(i) + g.radii(j);
         if (!(n.squaredNorm() < s2 * s2)) return;
         const Vector3<Scalar> vj = this->row(v, j);
         if (!((vi - vj).dot(n) > 0)) return;
         point_point_impulse(target, i, j, Vector3<Scalar>(n.normalized()), vi, vj, w(i), w(j), e);
-      } else if (kind == PairKind::PointEdge) {
+      } else if (kind == ParticlePairKind::PointEdge) {
         const int a = g.edges(j, 0), b = g.edges(j, 1);
         const auto d = point_segment_distance(xi, this->row(x, a), this->row(x, b));
         if (!(d.distance < g.radii(i) + g.edge_radii(j))) return;

@@ -198,7 +198,8 @@ class ImpactZoneStages {
         for (int k = 0; k < count; ++k)
           if (movable(m[k])) e.x1.row(m[k]) = carried(e, in, a, m[k]).transpose();
       } else {
-        rigid_zone_motion<Scalar>(m, count, false, in.masses, e.x0, in.dt, e.x1, velocity_scratch_);
+        rigid_zone_motion<Scalar>(m, count, false, in.step.masses, e.x0, in.step.dt, e.x1,
+                                  velocity_scratch_);
         // A rigid motion that would take a point into a solid: the zone stays where it started.
         bool blocked = false;
         for (int k = 0; k < count && !blocked; ++k) blocked = e.inside_solid(in.colliders, m[k]);

@@ -56,7 +56,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/contact/aligned_box.hpp"
 #include "massspring/contact/broad_phase/normal_cone_tree.hpp"
 #include "massspring/contact/response/detail/element_boxes.hpp"
 #include "massspring/contact/response/surface_elements.hpp"

@@ -68,11 +68,13 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "massspring/contact/ccd/additive_ccd.hpp"
 #include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/coulomb_friction.hpp"
 #include "massspring/contact/distance/bounding_balls.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
@@ -87,10 +89,10 @@
 
 namespace massspring::contact {
 
-/// @brief The end-of-step pass of surface contact (see the file comment). Armed by the system's
-/// set_surface(); until then resolve() does nothing and its code is not instantiated.
+/// @brief The end-of-step pass of surface contact (see the file comment). A system creates it at
+/// set_surface() or surface_contact() (SurfaceContactSlot), and only then compiles its code.
 template <class Scalar>
-class SurfaceContact {
+class SurfaceContact final : public SurfacePass<Scalar> {
  public:
   using V3 = Vector3<Scalar>;
   using M3 = Eigen::Matrix<Scalar, 3, 3>;
@@ -120,37 +122,22 @@ class SurfaceContact {
   /// @brief What the last resolve() did.
   [[nodiscard]] const SurfaceContactReport& last_report() const { return last_report_; }
 
-  /// @brief Makes resolve() run the pipeline (instantiates it).
-  void arm() {
-    static constexpr Ops kOps{&SurfaceContact::resolve_all};
-    ops_ = &kOps;
+  [[nodiscard]] std::unique_ptr<SurfacePass<Scalar>> clone() const override {
+    return std::make_unique<SurfaceContact>(*this);
   }
-  [[nodiscard]] bool armed() const { return ops_ != nullptr; }
 
-  /// @brief The pass over one step: x_start (#points by 3, no crossing), the proposed x_end and
-  /// v_end (changed in place), dt [s], masses [kg], pinned (ascending), the surface, the
-  /// self-collision parameters (nothing: off) and the colliders after their begin_step(dt).
-  SurfaceContactReport resolve(const Points<Scalar>& x_start, Points<Scalar>& x_end,
-                               Points<Scalar>& v_end, Scalar dt, const Vector<Scalar>& masses,
-                               const std::vector<int>& pinned, const Triangles& triangles,
-                               const Edges& edges,
-                               const std::optional<SelfCollision<Scalar>>& self_collision,
-                               const ColliderSet<Scalar>& colliders) {
-    if (!ops_ || triangles.rows() == 0) return {};
-    return ops_->resolve(*this, {x_start, x_end, v_end, dt, masses, pinned, triangles, edges,
-                                 self_collision, colliders});
+  /// @brief The pass over one step: from in.step.x_start (no crossing), the proposed end state
+  /// in.step.x_end and v_end are changed in place (see SurfaceContactInput). Nothing without
+  /// triangles.
+  SurfaceContactReport resolve(const SurfaceContactInput<Scalar>& in) override {
+    if (in.triangles.rows() == 0) return {};
+    return resolve_impl(in);
   }
 
  private:
   using Input = SurfaceContactInput<Scalar>;
   using Pair = ElementPair;
   using Stencil = PairStencil<Scalar>;
-  struct Ops {
-    SurfaceContactReport (*resolve)(SurfaceContact&, const Input&);
-  };
-  static SurfaceContactReport resolve_all(SurfaceContact& s, const Input& in) {
-    return s.resolve_impl(in);
-  }
 
   static int checked_rounds(const char* name, int rounds, int least) {
     if (rounds < least)
@@ -215,12 +202,12 @@ class SurfaceContact {
     }
     // Write back: positions, and velocities changed by the change of displacement over dt.
     const int n = e_.n;
-    const Scalar inv_dt = Scalar(1) / in.dt;
+    const Scalar inv_dt = Scalar(1) / in.step.dt;
     for (int i = 0; i < n; ++i) {
-      const V3 moved = e_.x1.row(i).transpose() - in.x_end.row(i).transpose();
+      const V3 moved = e_.x1.row(i).transpose() - in.step.x_end.row(i).transpose();
       if (moved.isZero(0)) continue;
-      in.x_end.row(i) = e_.x1.row(i);
-      in.v_end.row(i) += inv_dt * moved.transpose();
+      in.step.x_end.row(i) = e_.x1.row(i);
+      in.step.v_end.row(i) += inv_dt * moved.transpose();
     }
     return last_report_ = report;
   }
@@ -259,8 +246,8 @@ class SurfaceContact {
     V3 change = lambda * s.n;
     if (mu > 0) {
       const V3 t = rel - rel.dot(s.n) * s.n;
-      const Scalar len = t.norm();
-      if (len > 0) change -= std::min(len, mu * lambda) / len * t;
+      const Scalar len2 = t.squaredNorm();
+      if (len2 > 0) change -= coulomb_removed_fraction(len2, lambda, mu, mu) * t;
     }
     for (int k = 0; k < 4; ++k) {
       const int i = s.p[std::size_t(k)];
@@ -395,7 +382,6 @@ class SurfaceContact {
   int projection_rounds_ = 32;
   int max_rounds_ = 64;
   SurfaceContactReport last_report_;
-  const Ops* ops_ = nullptr;
   const ColliderSet<Scalar>* colliders_ = nullptr;  // the last resolve()'s
   SurfaceElements<Scalar> e_;
   std::vector<char> moved_;  // points whose end position changed since the last detection

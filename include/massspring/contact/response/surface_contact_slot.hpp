@@ -1,19 +1,22 @@
 #pragma once
 /// @file
 /// @brief SurfaceContactSlot: how a system holds its surface contact pass (contact/response/
-/// surface_contact.hpp) without including it. The pass is created, with a table of pointers to
-/// its code, by the first call of get(), which MassSpringSystem::set_surface() and
-/// surface_contact() make and which needs that header; resolve(), the integrators' call, goes
-/// through the table and does nothing while there is no pass. A program that never sets a surface
+/// surface_contact.hpp) without including it, through the interface SurfacePass
+/// (detail/clone_slot.hpp). The pass is created, and its code compiled, by the first call of
+/// get(), which MassSpringSystem::set_surface() and surface_contact() make and which needs that
+/// header; resolve(), the integrators' call, is one virtual call and does nothing while there is
+/// no pass. A program that never sets a surface
 /// neither includes nor compiles the pipeline (candidates, spatial hash, CCD, impact zones).
 /// Also what a pass is given (SurfaceContactInput) and what it did (SurfaceContactReport), which
 /// the integrators see without that header.
 
+#include <memory>
 #include <optional>
 #include <utility>
-#include <vector>
 
+#include "massspring/contact/collision_step.hpp"
 #include "massspring/contact/self_collision.hpp"
+#include "massspring/detail/clone_slot.hpp"
 #include "massspring/detail/is_complete.hpp"
 #include "massspring/types.hpp"
 
@@ -25,15 +28,12 @@ class ColliderSet;
 template <class Scalar>
 class SurfaceContact;  // #include <massspring/contact/response/surface_contact.hpp> for a surface
 
-/// @brief What surface contact is given for one step (see SurfaceContact::resolve()).
+/// @brief What surface contact is given for one step (see SurfaceContact::resolve()): the step's
+/// contact state, the surface, the self-collision parameters (nothing: off) and the colliders
+/// after their begin_step(step.dt).
 template <class Scalar>
 struct SurfaceContactInput {
-  const Points<Scalar>& x_start;
-  Points<Scalar>& x_end;
-  Points<Scalar>& v_end;
-  Scalar dt;
-  const Vector<Scalar>& masses;
-  const std::vector<int>& pinned;
+  const CollisionStep<Scalar>& step;
   const Triangles& triangles;
   const Edges& edges;
   const std::optional<SelfCollision<Scalar>>& self_collision;
@@ -56,67 +56,40 @@ struct SurfaceContactReport {
   bool resolved = true;
 };
 
+/// @brief What a system's contact sees of its surface pass: SurfaceContact<Scalar> is the one
+/// implementation.
+template <class Scalar>
+class SurfacePass {
+ public:
+  virtual ~SurfacePass() = default;
+  /// @brief A copy (a system copied is a new system with its own pass).
+  [[nodiscard]] virtual std::unique_ptr<SurfacePass> clone() const = 0;
+  /// @brief The pass over one step (SurfaceContact::resolve()).
+  virtual SurfaceContactReport resolve(const SurfaceContactInput<Scalar>& in) = 0;
+};
+
 /// @brief Owns at most one SurfaceContact<Scalar> (see the file comment); copies deep-copy it.
 template <class Scalar>
 class SurfaceContactSlot {
  public:
-  SurfaceContactSlot() = default;
-  SurfaceContactSlot(const SurfaceContactSlot& o)
-      : ops_(o.ops_), pass_(o.pass_ ? o.ops_->clone(*o.pass_) : nullptr) {}
-  SurfaceContactSlot(SurfaceContactSlot&& o) noexcept
-      : ops_(o.ops_), pass_(std::exchange(o.pass_, nullptr)) {}
-  SurfaceContactSlot& operator=(const SurfaceContactSlot& o) {
-    if (this != &o) *this = SurfaceContactSlot(o);
-    return *this;
-  }
-  SurfaceContactSlot& operator=(SurfaceContactSlot&& o) noexcept {
-    std::swap(ops_, o.ops_);
-    std::swap(pass_, o.pass_);
-    return *this;
-  }
-  ~SurfaceContactSlot() {
-    if (pass_) ops_->destroy(pass_);
-  }
-
-  /// @brief The pass, created (not armed) on first use. Needs surface_contact.hpp.
+  /// @brief The pass, created on first use. Needs surface_contact.hpp.
   SurfaceContact<Scalar>& get() {
-    static constexpr Ops kOps{&SurfaceContactSlot::destroy, &SurfaceContactSlot::clone,
-                              &SurfaceContactSlot::resolve_pass};
     static_assert(massspring::detail::is_complete_v<SurfaceContact<Scalar>>,
                   "set_surface() and surface_contact() need "
                   "#include <massspring/contact/response/surface_contact.hpp>");
-    if (!pass_) {
-      pass_ = new SurfaceContact<Scalar>();
-      ops_ = &kOps;
-    }
-    return *pass_;
+    if (SurfacePass<Scalar>* pass = slot_.get()) return static_cast<SurfaceContact<Scalar>&>(*pass);
+    return slot_.emplace(SurfaceContact<Scalar>());
   }
 
   /// @brief SurfaceContact::resolve() of the pass on `in`; nothing (an empty report) when there
   /// is no pass.
   SurfaceContactReport resolve(const SurfaceContactInput<Scalar>& in) {
-    if (!pass_) return {};
-    return ops_->resolve(*pass_, in);
+    SurfacePass<Scalar>* pass = slot_.get();
+    return pass ? pass->resolve(in) : SurfaceContactReport{};
   }
 
  private:
-  struct Ops {
-    void (*destroy)(SurfaceContact<Scalar>*);
-    SurfaceContact<Scalar>* (*clone)(const SurfaceContact<Scalar>&);
-    SurfaceContactReport (*resolve)(SurfaceContact<Scalar>&, const SurfaceContactInput<Scalar>&);
-  };
-  static void destroy(SurfaceContact<Scalar>* p) { delete p; }
-  static SurfaceContact<Scalar>* clone(const SurfaceContact<Scalar>& p) {
-    return new SurfaceContact<Scalar>(p);
-  }
-  static SurfaceContactReport resolve_pass(SurfaceContact<Scalar>& p,
-                                           const SurfaceContactInput<Scalar>& in) {
-    return p.resolve(in.x_start, in.x_end, in.v_end, in.dt, in.masses, in.pinned, in.triangles,
-                     in.edges, in.self_collision, in.colliders);
-  }
-
-  const Ops* ops_ = nullptr;
-  SurfaceContact<Scalar>* pass_ = nullptr;
+  massspring::detail::CloneSlot<SurfacePass<Scalar>> slot_;
 };
 
 }  // namespace massspring::contact

@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-#include "massspring/contact/broad_phase/box_hash.hpp"
+#include "massspring/contact/aligned_box.hpp"
 #include "massspring/contact/colliders/colliders.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
@@ -77,21 +77,18 @@ struct SurfaceElements {
 
   // Augmented arrays: the cloth's points, then the obstacles' (infinite mass); elements.
   void setup(const SurfaceContactInput<Scalar>& in) {
-    n = int(in.x_start.rows());
+    n = int(in.step.x_start.rows());
     int extra = 0;
     for (const auto& c : in.colliders) extra += obstacle_points(c);
     const int total = n + extra;
     x0.resize(total, 3);
     x1.resize(total, 3);
-    x0.topRows(n) = in.x_start;
-    x1.topRows(n) = in.x_end;
+    x0.topRows(n) = in.step.x_start;
+    x1.topRows(n) = in.step.x_end;
     w.resize(total);
-    for (int i = 0; i < n; ++i) w(i) = Scalar(1) / in.masses(i);
+    w.head(n) = in.step.inverse_masses;
     pinned.assign(std::size_t(total), 0);
-    for (int i : in.pinned) {
-      w(i) = 0;
-      pinned[std::size_t(i)] = 1;
-    }
+    for (int i : in.step.pinned) pinned[std::size_t(i)] = 1;
     w.tail(extra).setZero();
     hold_solid_contacts(in);
     owner.assign(std::size_t(total), -1);
@@ -193,7 +190,7 @@ struct SurfaceElements {
     if (in.colliders.empty()) return;
     for (int i = 0; i < n; ++i) {
       if (w(i) == 0 || !inside_solid(in.colliders, i)) continue;
-      in.colliders.project(x0.row(i).data(), x1.row(i).data(), in.dt);
+      in.colliders.project(x0.row(i).data(), x1.row(i).data(), in.step.dt);
       w(i) = 0;
       moved[std::size_t(i)] = 1;
     }

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "massspring/contact/collision_handler.hpp"
+#include "massspring/contact/collision_step.hpp"
 #include "massspring/contact/response/surface_contact_slot.hpp"
 #include "massspring/integrators/detail/energy_bound.hpp"
 #include "massspring/integrators/step_report.hpp"
@@ -15,9 +15,9 @@ namespace massspring::detail {
 /// @brief Ends a step whose proposed end state is (x_end, v_end), #points by 3, from the state
 /// the system holds (the start of the step), in this order:
 /// 1. pinned points at their targets, with the velocity (target - x_start) / dt;
-/// 2. the collision response: the system's handler, the colliders' point response
-///    (contact/collision_handler.hpp), then surface contact (contact/response/
-///    surface_contact.hpp: no edge crosses a triangle of the cloth or an obstacle's edge);
+/// 2. the collision response, on the step's CollisionStep built once (contact/
+///    contact_pipeline.hpp: the system's handler, the colliders' point response, then surface
+///    contact, after which no edge crosses a triangle of the cloth or an obstacle's edge);
 /// 3. pinned points at their targets again (an impact zone may have moved one);
 /// 4. when every value is finite, the contact was resolved and the end state's energy is within
 ///    `bound` (energy_bound.hpp; else report.blew_up): the end state is written to the system and
@@ -45,11 +45,10 @@ void commit_step(System& system, typename System::PointsType& x_end,
   };
   if (snap_pins) pin();
   if (system.has_collision_response()) {
-    contact::handle_collisions(system, x0, system.velocities(), x_end, v_end, dt,
-                               collider_friction);
-    const contact::SurfaceContactReport r = system.surface_contact_slot().resolve(
-        {x0, x_end, v_end, dt, system.masses(), pinned, system.surface(), system.surface_edges(),
-         system.self_collision(), system.colliders()});
+    const contact::CollisionStep<typename System::Scalar> step{
+        x0,    system.velocities(), x_end, v_end, dt, system.masses(), system.inverse_masses(),
+        pinned};
+    const contact::SurfaceContactReport r = system.contact().respond(step, collider_friction);
     report.contact_impulses = r.impulses;
     report.contact_zone_points = r.zone_points;
     report.contact_resolved = r.resolved;

@@ -7,8 +7,8 @@
 #include <string>
 #include <utility>
 
-#include "massspring/contact/fosssim/broad_phase.hpp"
 #include "massspring/contact/collision_handler.hpp"
+#include "massspring/contact/fosssim/broad_phase.hpp"
 #include "massspring/contact/fosssim/geometry.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -31,15 +31,12 @@ class ImpulseHandlerBase : public CollisionHandler<Scalar> {
   [[nodiscard]] BroadPhaseKind broad_phase() const { return broad_phase_.kind(); }
 
  protected:
-  /// @brief Checks the sizes and fills w_ (no allocation after the first step of a size).
-  void prepare(const CollisionStep<Scalar>& s, const char* who) {
+  /// @brief Checks the sizes.
+  void prepare(const CollisionStep<Scalar>& s, const char* who) const {
     const Eigen::Index n = s.masses.size();
     if (geometry_.num_particles() != n || s.x_end.rows() != n)
       throw Error(massspring::detail::message(who, ": the handler has ", geometry_.num_particles(),
                                               " particle radii, the system ", n, " points"));
-    if (w_.size() != n) w_.resize(n);
-    w_ = s.masses.cwiseInverse();
-    for (int i : s.pinned) w_(i) = 0;
   }
   [[nodiscard]] Vector3<Scalar> row(const Points<Scalar>& p, int i) const {
     return p.row(i).transpose();
@@ -47,8 +44,7 @@ class ImpulseHandlerBase : public CollisionHandler<Scalar> {
 
   ContactGeometry<Scalar> geometry_;
   Scalar cor_ = 1;
-  BroadPhase<Scalar> broad_phase_;
-  Vector<Scalar> w_;
+  FosssimBroadPhase<Scalar> broad_phase_;
 };
 
 }  // namespace massspring::contact::detail
