@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
   CLI::App app{"massspring-pole: a flag wound onto a turning pole"};
   std::string out;
   int frames = 2500, every = 25, iterations = 10;
-  double contact_weight = 0;
-  std::string acceleration = "none";
+  double contact_weight = 0;  // unset: the integrator's default
+  std::string acceleration;   // unset: FastMassSpring's default
   std::string integrator = "fast-mass-spring";
   double dt = 0.002, turns_per_second = 0.5, min_wound = 0;
   app.add_option("--out", out, "folder for frame_NNNNN.obj (none: no frames written)");
@@ -60,25 +60,28 @@ int main(int argc, char** argv) {
           {"fast-mass-spring", "backward-euler", "linearized-backward-euler", "symplectic-euler"}));
   CLI::Option* o_iterations =
       app.add_option("--iterations", iterations,
-                     "local-global iterations per step (fast-mass-spring, default 10); most "
-                     "Newton or contact iterations (backward-euler: default its own, 20)")
+                     "local-global iterations per step (fast-mass-spring: default its own, 10); "
+                     "most Newton or contact iterations (backward-euler: default its own, 20)")
           ->check(CLI::PositiveNumber);
-  app.add_option("--acceleration", acceleration,
-                 "FastMassSpringOptions::acceleration: none, chebyshev or anderson "
-                 "(fast-mass-spring only)")
-      ->check(CLI::IsMember(ms::option_names<ms::Acceleration>()));
-  app.add_option("--contact-weight", contact_weight,
-                 "the contact_weight of FastMassSpringOptions or BackwardEulerOptions (0: contact "
-                 "at the end of the step; > 0: inside the solve; fast-mass-spring then starts "
-                 "from the inertial prediction)")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* o_acceleration =
+      app.add_option("--acceleration", acceleration,
+                     "FastMassSpringOptions::acceleration: none, chebyshev or anderson "
+                     "(fast-mass-spring only; default its own, anderson)")
+          ->check(CLI::IsMember(ms::option_names<ms::Acceleration>()));
+  CLI::Option* o_contact_weight =
+      app.add_option("--contact-weight", contact_weight,
+                     "the contact_weight of FastMassSpringOptions or BackwardEulerOptions "
+                     "(default the integrator's own: 1 and 0; 0: contact at the end of the step, "
+                     "and fast-mass-spring then starts from the current positions; > 0: inside "
+                     "the solve)")
+          ->check(CLI::NonNegativeNumber);
   app.add_option("--min-wound", min_wound,
                  "exit 1 when fewer rows than this fraction of the closed form are wound")
       ->check(CLI::Range(0.0, 1.0));
   CLI11_PARSE(app, argc, argv);
   const ms::IntegratorKind kind = ms::parse_integrator(integrator, ms::IntegratorNaming::Cli);
   const bool fast = kind == ms::IntegratorKind::FastMassSpring;
-  if (!fast && acceleration != "none") {
+  if (!fast && o_acceleration->count() > 0) {
     std::fprintf(stderr, "massspring-pole: --acceleration applies to fast-mass-spring only\n");
     return 1;
   }
@@ -119,18 +122,21 @@ int main(int argc, char** argv) {
 
     ms::SymplecticEuler<System> se;
     ms::FastMassSpring<System> solver;
-    solver.options.iterations = iterations;
-    solver.options.contact_weight = contact_weight;
-    solver.options.acceleration = ms::parse_option<ms::Acceleration>(acceleration);
-    // The contact term's weight slows motion the start does not predict (options.hpp).
-    solver.options.initial_guess =
-        contact_weight > 0 ? ms::InitialGuess::Inertial : ms::InitialGuess::Current;
+    // The defaults unless a flag sets an option. Without the contact term the solve starts
+    // from the current positions (the setting the end-of-step response was measured with).
+    if (o_iterations->count() > 0) solver.options.iterations = iterations;
+    if (o_acceleration->count() > 0)
+      solver.options.acceleration = ms::parse_option<ms::Acceleration>(acceleration);
+    if (o_contact_weight->count() > 0) {
+      solver.options.contact_weight = contact_weight;
+      if (contact_weight == 0) solver.options.initial_guess = ms::InitialGuess::Current;
+    }
     ms::BackwardEuler<System> be;
     be.options.mode = kind == ms::IntegratorKind::LinearizedBackwardEuler
                           ? ms::BackwardEulerMode::Linearized
                           : ms::BackwardEulerMode::Newton;
     if (o_iterations->count() > 0) be.options.iterations = iterations;
-    be.options.contact_weight = contact_weight;
+    if (o_contact_weight->count() > 0) be.options.contact_weight = contact_weight;
     const auto step = [&] {
       return fast                                          ? solver.step(sys)
              : kind == ms::IntegratorKind::SymplecticEuler ? se.step(sys)

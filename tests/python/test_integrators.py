@@ -68,6 +68,7 @@ def test_backward_euler_options_and_spring():
     s.pin(0)
     solver = ms.BackwardEuler()
     assert solver.options.mode == ms.BackwardEulerMode.Newton
+    assert solver.options.contact_weight == 1.0  # contact inside the solve, as FastMassSpring's
     solver.options.iterations = 30
     solver.options.tolerance = 1e-12
     solver.options.line_search = False

@@ -47,9 +47,11 @@ struct BackwardEulerOptions {
   Scalar tolerance = Scalar(1e-10);
   /// @brief Newton: backtracking line search (default on).
   bool line_search = true;
-  /// @brief Weight alpha of contact inside the solve (dimensionless, finite, >= 0). 0 (the
-  /// default): contact and friction are the end-of-step response every integrator applies
-  /// (docs/contact.md). alpha > 0, for a system with colliders: each point that touches a
+  /// @brief Weight alpha of contact inside the solve (dimensionless, finite, >= 0). Default 1, as
+  /// FastMassSpring's (docs/contact.md, "Defaults"). 0: contact and friction are only the
+  /// end-of-step response every integrator applies, which alone keeps the colliders'
+  /// restitution (the term is inelastic). alpha > 0, for a system with colliders: each point that
+  /// touches a
   /// collider gets the weight w_i = alpha sqrt(m_i (m_i + h^2 k_i)) [kg] (k_i the summed stiffness
   /// of its springs) on A's diagonal and the term w_i / (2 h^2) |x_i - (z_i - u_i)|^2 in the
   /// incremental potential, with z_i = P(x_i + u_i)
@@ -62,7 +64,7 @@ struct BackwardEulerOptions {
   /// successive residuals: the distance to the limit of a linear rate), to be <= tolerance
   /// (1 + max |x|); Linearized solves its linear model with the term `iterations` times
   /// at most, to the same test.
-  Scalar contact_weight = Scalar(0);
+  Scalar contact_weight = Scalar(1);
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
   /// the step's start energy by more than energy_growth (S + S_c), S the scale taken at
   /// precompute() and S_c the colliders' (integrators/detail/energy_bound.hpp), is reported as

@@ -138,8 +138,10 @@ std::unique_ptr<Stepper> make_stepper(Kind k, int fms_iterations = 10) {
       o.mode = k == Kind::BackwardEulerNewton || k == Kind::BackwardEulerNewtonInSolve
                    ? massspring::BackwardEulerMode::Newton
                    : massspring::BackwardEulerMode::Linearized;
-      if (k == Kind::BackwardEulerLinearizedInSolve || k == Kind::BackwardEulerNewtonInSolve)
-        o.contact_weight = 1;
+      // The end-of-step response alone unless InSolve (the default is the term, weight 1).
+      o.contact_weight =
+          k == Kind::BackwardEulerLinearizedInSolve || k == Kind::BackwardEulerNewtonInSolve ? 1
+                                                                                             : 0;
       return std::make_unique<StepperOf<BE>>(o);
     }
     case Kind::FastMassSpring:
