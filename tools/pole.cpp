@@ -122,8 +122,9 @@ int main(int argc, char** argv) {
 
     ms::SymplecticEuler<System> se;
     ms::FastMassSpring<System> solver;
-    // The defaults unless a flag sets an option. Without the contact term the solve starts
-    // from the current positions (the setting the end-of-step response was measured with).
+    // The defaults unless a flag sets an option. `--contact-weight 0` also starts the solve from
+    // the current positions, FastMassSpringOptions::reference()'s start (options.hpp: the
+    // inertial start pairs with the contact term).
     if (o_iterations->count() > 0) solver.options.iterations = iterations;
     if (o_acceleration->count() > 0)
       solver.options.acceleration = ms::parse_option<ms::Acceleration>(acceleration);
