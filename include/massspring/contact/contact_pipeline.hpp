@@ -17,6 +17,7 @@
 /// code: the handler and the surface pass are held through detail::CloneSlot, the colliders'
 /// response through ColliderSet's table of entry points, each set where it is first used.
 
+#include <cstddef>
 #include <optional>
 #include <utility>
 #include <vector>

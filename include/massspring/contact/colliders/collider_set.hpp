@@ -110,6 +110,13 @@ class ColliderSet {
     if (ops_) ops_->project(*this, x_start, x_end, dt);
   }
 
+  /// @brief The contact tolerance at a point x [m]: a point within a few rounding units of a
+  /// surface touches it (units of the point's coordinates, and of the collider's position and
+  /// thickness); the response adds each collider's own slop().
+  [[nodiscard]] static Scalar point_slop(const V3& x) {
+    return 16 * std::numeric_limits<Scalar>::epsilon() * (1 + x.cwiseAbs().maxCoeff());
+  }
+
   /// @brief False when the path x_start -> x_end is far from every collider (Collider::far()).
   template <class A, class B>
   [[nodiscard]] bool near(const A& x_start, const B& x_end) const {
@@ -176,12 +183,6 @@ class ColliderSet {
     V3 moved = xe;
     if (push(xs, moved, nullptr, dt, 0, nullptr, true))
       for (int c = 0; c < 3; ++c) x_end[c] = moved(c);
-  }
-
-  // Contact tolerance: a point within a few rounding units of the surface touches it (units of
-  // the point's coordinates, and of the collider's position and thickness).
-  static Scalar point_slop(const V3& x) {
-    return 16 * std::numeric_limits<Scalar>::epsilon() * (1 + x.cwiseAbs().maxCoeff());
   }
 
   // The response of one point (velocity too when ve is not null); true when anything moved.

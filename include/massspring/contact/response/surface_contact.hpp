@@ -262,7 +262,7 @@ class SurfaceContact final : public SurfacePass<Scalar> {
     int count = 0;
     for (const Pair& q : broad_.pairs()) {
       const std::array<int, 4> p = e_.points_of(q);
-      const int split = q.kind == ElementPairKind::PointTriangle ? 1 : 2;
+      const int split = q.split();
       if (!cloth_pair(q) || apart(p, split, h, false) ||
           !balls_within<Scalar>(at(p, e_.x1), split, h))
         continue;
@@ -321,7 +321,7 @@ class SurfaceContact final : public SurfacePass<Scalar> {
       if (zones_.same_rigid_zone(p)) continue;
       // Swept boxes farther apart than the gap along an axis, or bounding balls that stay
       // farther apart: no contact during the step.
-      const int split = q.kind == ElementPairKind::PointTriangle ? 1 : 2;
+      const int split = q.split();
       if (apart(p, split, gap, true) ||
           !swept_balls_within<Scalar>(at(p, e_.x0), at(p, e_.x1), split, gap))
         continue;

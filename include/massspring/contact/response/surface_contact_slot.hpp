@@ -12,7 +12,6 @@
 
 #include <memory>
 #include <optional>
-#include <utility>
 
 #include "massspring/contact/collision_step.hpp"
 #include "massspring/contact/self_collision.hpp"

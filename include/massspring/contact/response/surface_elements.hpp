@@ -59,6 +59,9 @@ enum class ElementPairKind : int {
 struct ElementPair {
   ElementPairKind kind;
   int a, b;
+  /// @brief How many of the pair's four points (SurfaceElements::points_of()) belong to its
+  /// first element: 1 (a point) or 2 (an edge).
+  [[nodiscard]] int split() const { return kind == ElementPairKind::PointTriangle ? 1 : 2; }
 };
 
 /// @brief The work state (see the file comment); its arrays keep their capacity.
@@ -162,8 +165,7 @@ struct SurfaceElements {
       if (w(i) == 0) continue;
       const V3 xs = p0(i), xe = p1(i);
       if (!in.colliders.near(xs, xe)) continue;
-      const Scalar slop =
-          16 * std::numeric_limits<Scalar>::epsilon() * (1 + xe.cwiseAbs().maxCoeff());
+      const Scalar slop = ColliderSet<Scalar>::point_slop(xe);
       for (const auto& c : in.colliders)
         if (c.shape() != ColliderShape::Mesh && c.contact(xs, xe, slop + c.slop(), k)) {
           w(i) = 0;
