@@ -2,7 +2,8 @@
 /// @file
 /// @brief AlignedBox3: the one axis-aligned box of contact/: the boxes the spatial hash stores
 /// (broad_phase/box_hash.hpp), the nodes of the normal-cone tree (broad_phase/
-/// normal_cone_tree.hpp) and of a mesh collider's hierarchy (colliders/triangle_mesh.hpp).
+/// normal_cone_tree.hpp) and of a mesh collider's hierarchy (colliders/triangle_mesh.hpp), through
+/// the one tree they share (broad_phase/box_tree.hpp).
 
 #include <Eigen/Core>
 #include <limits>
@@ -34,6 +35,8 @@ struct AlignedBox3 {
   [[nodiscard]] bool overlaps(const AlignedBox3& o) const {
     return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
   }
+  /// @brief The box's centre, (lo + hi) / 2.
+  [[nodiscard]] Vector3<Scalar> centre() const { return (lo + hi) / 2; }
   /// @brief The squared distance [m^2] from p to the box, 0 inside it.
   [[nodiscard]] Scalar squared_distance(const Vector3<Scalar>& p) const {
     return (lo - p).cwiseMax(p - hi).cwiseMax(Vector3<Scalar>::Zero()).squaredNorm();

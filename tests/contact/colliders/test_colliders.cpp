@@ -492,6 +492,48 @@ TEST_CASE("TriangleMesh: closest point and first crossing equal a brute force ov
   }
 }
 
+TEST_CASE(
+    "TriangleMesh: of triangles at one distance or crossed at one parameter, the lowest index") {
+  // A fan of six triangles about the origin in the plane y = 0, behind three far ones, each
+  // fan triangle taking each index in turn: a point above the centre is at 0.1 m from all six,
+  // and a vertical segment through the centre meets them all at its middle, whatever the tree.
+  constexpr double kPi = 3.14159265358979323846;
+  for (int turn = 0; turn < 6; ++turn) {
+    CAPTURE(turn);
+    Pts v(7 + 9, 3);
+    v.row(0) << 0, 0, 0;
+    for (int k = 0; k < 6; ++k) v.row(1 + k) << std::cos(k * kPi / 3), 0, std::sin(k * kPi / 3);
+    for (int j = 0; j < 3; ++j) {
+      v.row(7 + 3 * j) << 5 + j, 1, 5;
+      v.row(8 + 3 * j) << 6 + j, 1, 5;
+      v.row(9 + 3 * j) << 5 + j, 2, 5;
+    }
+    contact::Triangles f(9, 3);
+    for (int j = 0; j < 3; ++j) f.row(j) << 7 + 3 * j, 8 + 3 * j, 9 + 3 * j;
+    for (int k = 0; k < 6; ++k) f.row(3 + (k + turn) % 6) << 0, 1 + k, 1 + (k + 1) % 6;
+    const contact::TriangleMesh<double> mesh(v, f);
+    V3 q;
+    int tri = -1;
+    REQUIRE(mesh.closest_within(V3(0, 0.1, 0), 0.5, q, tri));
+    CHECK(q == V3::Zero());
+    CHECK(tri == 3);
+    // The tie rule over the library's own segment test, triangle by triangle.
+    const V3 p0(0, 1, 0), p1(0, -1, 0);
+    int lowest = -1;
+    for (int t = 0; t < 9 && lowest < 0; ++t) {
+      double u = 0;
+      if (contact::segment_crosses_triangle(p0, p1, mesh.vertex(t, 0), mesh.vertex(t, 1),
+                                            mesh.vertex(t, 2), u))
+        lowest = t;
+    }
+    REQUIRE(lowest >= 3);
+    double t_hit = -1;
+    REQUIRE(mesh.first_crossing(p0, p1, t_hit, tri));
+    CHECK(t_hit == 0.5);
+    CHECK(tri == lowest);
+  }
+}
+
 TEST_CASE("mesh collider: phi is the unsigned distance; a crossing path is sent back") {
   Pts v;
   contact::Triangles f;

@@ -4,11 +4,11 @@
 /// of triangles whose swept boxes overlap, skipping whole patches that cannot touch themselves
 /// over the step (the broad phase of self-collision, contact/response/surface_candidates.hpp).
 ///
-/// The tree splits the triangles in two, recursively, at the middle of the longest side of their
-/// boxes' centres (the median when that leaves fewer than an eighth on one side, so the depth
-/// stays O(log m)); a leaf holds one triangle. Each node is a patch of the surface. Per step,
-/// refit() gives each node the box of its triangles' straight-line sweeps x0 -> x1, grown by g,
-/// and the range of its triangles' normals over the whole step along seven fixed directions.
+/// The tree is a BoxTree (broad_phase/box_tree.hpp) over the triangles, split by the centres of
+/// their boxes in the positions given to build(), one triangle a leaf. Each node is a patch of
+/// the surface. Per step, refit() gives each node the box of its triangles' straight-line sweeps
+/// x0 -> x1, grown by g, and the range of its triangles' normals over the whole step along seven
+/// fixed directions.
 ///
 /// **Why a patch may be skipped** (Volino and Magnenat-Thalmann 1994, "Efficient self-collision
 /// detection on smoothly discretized surface animations using geometrical shape regularity";
@@ -55,6 +55,7 @@
 #include <vector>
 
 #include "massspring/contact/aligned_box.hpp"
+#include "massspring/contact/broad_phase/box_tree.hpp"
 #include "massspring/contact/broad_phase/normal_bounds.hpp"
 #include "massspring/contact/broad_phase/star_contour.hpp"
 #include "massspring/types.hpp"
@@ -73,38 +74,38 @@ class NormalConeTree {
   /// for patches to be skipped), split by their positions in x.
   void build(const Points<Scalar>& x, const std::vector<Triangle>& triangles) {
     triangles_ = triangles;
-    nodes_.clear();
     loops_.clear();
     const int m = int(triangles_.size());
-    order_.resize(std::size_t(m));
-    centres_.resize(std::size_t(m));
-    leaf_of_.resize(std::size_t(m));
-    changed_.assign(std::size_t(std::max(0, 2 * m - 1)), 1);
-    for (int t = 0; t < m; ++t) {
-      order_[std::size_t(t)] = t;
-      const Triangle& c = triangles_[std::size_t(t)];
-      const V3 a = row(x, c[0]), b = row(x, c[1]), d = row(x, c[2]);
-      centres_[std::size_t(t)] = (a.cwiseMin(b).cwiseMin(d) + a.cwiseMax(b).cwiseMax(d)) / 2;
-    }
-    nodes_.reserve(std::size_t(std::max(0, 2 * m - 1)));
+    std::vector<V3> centres(static_cast<std::size_t>(m));
+    for (int t = 0; t < m; ++t) centres[std::size_t(t)] = corners_box(x, t).centre();
+    tree_.build(centres, 1);
+    patches_.assign(tree_.size(), Patch{});
     loops_.reserve(std::size_t(8 * m));
     position_.assign(std::size_t(x.rows()), -1);
-    if (m > 0) split(x, 0, m);
-    normals_.resize(nodes_.size());
+    // Children before their parent: a parent's loop is glued from its children's.
+    for (std::size_t k = tree_.size(); k-- > 0;) {
+      const auto& n = tree_.node(k);
+      patches_[k].home =
+          n.is_leaf()
+              ? corners_box(x, tree_.primitive(n.begin))
+              : patches_[std::size_t(n.left)].home.merged(patches_[std::size_t(n.right)].home);
+      contour(x, k);
+    }
+    normals_.resize(tree_.size());
     std::size_t longest = 0;
-    for (const Node& n : nodes_)
-      longest = std::max(longest, std::size_t(n.loop_end - n.loop_begin));
+    for (const Patch& p : patches_)
+      longest = std::max(longest, std::size_t(p.loop_end - p.loop_begin));
     union_loop_.reserve(2 * longest);
   }
 
   /// @brief The number of nodes (2 m - 1 for m > 0 triangles).
-  [[nodiscard]] std::size_t size() const { return nodes_.size(); }
+  [[nodiscard]] std::size_t size() const { return tree_.size(); }
 
   /// @brief Each node's box over x0 -> x1 grown by g [m], and its normal bounds. Every triangle
   /// counts as changed (see the overload below).
   void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g) {
-    changed_.assign(nodes_.size(), 1);
-    for (std::size_t k = nodes_.size(); k-- > 0;) fit(x0, x1, g, k);
+    tree_.refit([&](int t) { return swept_box(x0, x1, g, t); });
+    fit_normals(x0, x1);
   }
 
   /// @brief refit() of the nodes whose patch holds a triangle t with changed[t] != 0 (a flag
@@ -114,16 +115,8 @@ class NormalConeTree {
   /// unchanged triangle.
   void refit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g,
              const std::vector<char>& changed) {
-    changed_.assign(nodes_.size(), 0);
-    for (std::size_t t = 0; t < leaf_of_.size(); ++t)
-      if (changed[t]) changed_[std::size_t(leaf_of_[t])] = 1;
-    // Preorder puts children after their parent: backwards, a node after its children.
-    for (std::size_t k = nodes_.size(); k-- > 0;) {
-      const Node& n = nodes_[k];
-      if (n.left >= 0)
-        changed_[k] = changed_[std::size_t(n.left)] || changed_[std::size_t(n.right)];
-      if (changed_[k]) fit(x0, x1, g, k);
-    }
+    tree_.refit([&](int t) { return swept_box(x0, x1, g, t); }, changed);
+    fit_normals(x0, x1);
   }
 
   /// @brief Calls visit(s, t) once for each pair of distinct triangles (indices into the
@@ -141,19 +134,22 @@ class NormalConeTree {
   template <class Visit, class Skipped>
   void self_pairs(const Points<Scalar>& x0, const Points<Scalar>& x1, Visit&& visit,
                   Skipped&& skipped) {
-    if (!nodes_.empty()) self(x0, x1, 0, visit, skipped);
+    if (!tree_.empty()) self(x0, x1, 0, visit, skipped);
   }
 
   /// @brief The triangles of node k's patch (node 0: all of them).
   [[nodiscard]] std::vector<int> patch(std::size_t k) const {
-    return {order_.begin() + nodes_[k].begin, order_.begin() + nodes_[k].end};
+    std::vector<int> out;
+    for (int s = tree_.node(k).begin; s < tree_.node(k).end; ++s) out.push_back(tree_.primitive(s));
+    return out;
   }
 
   /// @brief Calls visit(t) for each triangle t that the last refit() changed and whose box
   /// overlaps b.
   template <class Visit>
   void query(const Box& b, Visit&& visit) const {
-    if (!nodes_.empty()) query(0, b, visit);
+    tree_.descend([&](std::size_t k) { return tree_.changed(k) && tree_.node(k).box.overlaps(b); },
+                  visit);
   }
 
   /// @brief Whether the patch of node k (0: the whole surface) passes the test of the file
@@ -161,9 +157,9 @@ class NormalConeTree {
   [[nodiscard]] bool cannot_touch_itself(const Points<Scalar>& x0, const Points<Scalar>& x1,
                                          std::size_t k) const {
     V3 a;
-    const Node& n = nodes_[k];
-    return n.centre >= 0 && normals_[k].axis(a) &&
-           star(x0, x1, a, n.centre, loops_.data() + n.loop_begin, n.loop_end - n.loop_begin);
+    const Patch& p = patches_[k];
+    return p.centre >= 0 && normals_[k].axis(a) &&
+           star(x0, x1, a, p.centre, loops_.data() + p.loop_begin, p.loop_end - p.loop_begin);
   }
 
   /// @brief Whether the union of the patches of nodes i and j (disjoint: neither holds the
@@ -176,90 +172,85 @@ class NormalConeTree {
   }
 
  private:
-  struct Node {
-    int left = -1, right = -1;         // children, or -1 for a leaf
-    int begin = 0, end = 0;            // its triangles: order_[begin, end)
+  // What a node adds to the box tree's: its patch's boundary loop and star centre, and its box
+  // in the positions given to build().
+  struct Patch {
     int loop_begin = 0, loop_end = 0;  // boundary loop in loops_
     int centre = -1;  // the triangle whose centroid is the star's centre; -1: not a disk
-    Box box;
-    Box home;  // the box of its triangles' corners in the x given to build()
+    Box home;         // the box of its triangles' corners in the x given to build()
   };
   using Normals = NormalBounds<Scalar>;
 
   static V3 row(const Points<Scalar>& x, int i) { return x.row(i).transpose(); }
 
-  // Splits order_[b, e) into a node and its subtrees (preorder: a parent before its children).
-  int split(const Points<Scalar>& x, int b, int e) {
-    const int id = int(nodes_.size());
-    nodes_.emplace_back();
-    nodes_[std::size_t(id)].begin = b;
-    nodes_[std::size_t(id)].end = e;
-    if (e - b > 1) {
-      V3 lo = centres_[std::size_t(order_[std::size_t(b)])], hi = lo;
-      for (int k = b; k < e; ++k) {
-        lo = lo.cwiseMin(centres_[std::size_t(order_[std::size_t(k)])]);
-        hi = hi.cwiseMax(centres_[std::size_t(order_[std::size_t(k)])]);
-      }
-      int axis = 0;
-      (hi - lo).maxCoeff(&axis);
-      const Scalar middle = (lo(axis) + hi(axis)) / 2;
-      const auto first = order_.begin() + b, last = order_.begin() + e;
-      int m = int(std::partition(first, last,
-                                 [&](int t) { return centres_[std::size_t(t)](axis) < middle; }) -
-                  order_.begin());
-      if (std::min(m - b, e - m) < std::max(1, (e - b) / 8)) {
-        m = b + (e - b) / 2;
-        std::nth_element(first, order_.begin() + m, last, [&](int s, int t) {
-          return centres_[std::size_t(s)](axis) < centres_[std::size_t(t)](axis);
-        });
-      }
-      const int left = split(x, b, m);
-      const int right = split(x, m, e);
-      Node& n = nodes_[std::size_t(id)];
-      n.left = left;
-      n.right = right;
-      const Box& l = nodes_[std::size_t(left)].home;
-      const Box& r = nodes_[std::size_t(right)].home;
-      n.home = l.merged(r);
-    } else {
-      leaf_of_[std::size_t(order_[std::size_t(b)])] = id;
-      const Triangle& c = triangles_[std::size_t(order_[std::size_t(b)])];
-      const V3 p = row(x, c[0]), q = row(x, c[1]), r = row(x, c[2]);
-      nodes_[std::size_t(id)].home = {p.cwiseMin(q).cwiseMin(r), p.cwiseMax(q).cwiseMax(r)};
-    }
-    contour(x, nodes_[std::size_t(id)]);
-    return id;
+  // The box of triangle t's corners in x.
+  Box corners_box(const Points<Scalar>& x, int t) const {
+    const Triangle& c = triangles_[std::size_t(t)];
+    const V3 a = row(x, c[0]), b = row(x, c[1]), d = row(x, c[2]);
+    return {a.cwiseMin(b).cwiseMin(d), a.cwiseMax(b).cwiseMax(d)};
   }
 
-  // The node's boundary loop and star centre, when its patch is a topological disk: a triangle
+  // Triangle t's box over x0 -> x1, grown by g.
+  Box swept_box(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, int t) const {
+    const Triangle& c = triangles_[std::size_t(t)];
+    const V3 a0 = row(x0, c[0]), b0 = row(x0, c[1]), c0 = row(x0, c[2]);
+    const V3 a1 = row(x1, c[0]), b1 = row(x1, c[1]), c1 = row(x1, c[2]);
+    Box box{a0.cwiseMin(b0).cwiseMin(c0).cwiseMin(a1).cwiseMin(b1).cwiseMin(c1),
+            a0.cwiseMax(b0).cwiseMax(c0).cwiseMax(a1).cwiseMax(b1).cwiseMax(c1)};
+    box.lo.array() -= g;
+    box.hi.array() += g;
+    return box;
+  }
+
+  // The normal bounds of the nodes the last refit changed: a leaf's from its triangle's motion,
+  // an inner node's from its children's.
+  void fit_normals(const Points<Scalar>& x0, const Points<Scalar>& x1) {
+    for (std::size_t k = tree_.size(); k-- > 0;) {
+      if (!tree_.changed(k)) continue;
+      const auto& n = tree_.node(k);
+      if (n.is_leaf()) {
+        const Triangle& c = triangles_[std::size_t(tree_.primitive(n.begin))];
+        normals_[k] = Normals::of_triangle(row(x0, c[0]), row(x0, c[1]), row(x0, c[2]),
+                                           row(x1, c[0]), row(x1, c[1]), row(x1, c[2]));
+      } else {
+        normals_[k] =
+            Normals::merged(normals_[std::size_t(n.left)], normals_[std::size_t(n.right)]);
+      }
+    }
+  }
+
+  // Node k's boundary loop and star centre, when its patch is a topological disk: a triangle
   // with three distinct corners (loop a, b, c); two disks glued along one arc of their loops,
   // the left loop running s -> e along it and the right one e -> s, sharing no other vertex (then
   // the loop is the left one's e -> s and the right one's s -> e; cost O(the two loops)); or,
   // when the children are not such disks (a tree split in a folded shape), a patch that passes
-  // trace() (cost O(triangles log triangles)).
-  void contour(const Points<Scalar>& x, Node& n) {
+  // trace() (cost O(triangles log triangles)). Its children's must be set.
+  void contour(const Points<Scalar>& x, std::size_t k) {
+    const auto& n = tree_.node(k);
+    Patch& p = patches_[k];
     const int begin = int(loops_.size());
-    if (n.left < 0) {
-      const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
+    if (n.is_leaf()) {
+      const Triangle& c = triangles_[std::size_t(tree_.primitive(n.begin))];
       if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) return;
       loops_.insert(loops_.end(), c.begin(), c.end());
-    } else if (!glue(nodes_[std::size_t(n.left)], nodes_[std::size_t(n.right)], loops_) &&
+    } else if (!glue(patches_[std::size_t(n.left)], patches_[std::size_t(n.right)], loops_) &&
                !trace(n)) {
       return;
     }
-    n.loop_begin = begin;
-    n.loop_end = int(loops_.size());
+    p.loop_begin = begin;
+    p.loop_end = int(loops_.size());
     // The centre: the centroid of the patch's triangle nearest the mean of the loop.
     V3 mean = V3::Zero();
-    for (int k = begin; k < n.loop_end; ++k) mean += row(x, loops_[std::size_t(k)]);
-    mean /= Scalar(n.loop_end - begin);
+    for (int i = begin; i < p.loop_end; ++i) mean += row(x, loops_[std::size_t(i)]);
+    mean /= Scalar(p.loop_end - begin);
     Scalar best = -1;
-    for (int k = n.begin; k < n.end; ++k) {
-      const Triangle& c = triangles_[std::size_t(order_[std::size_t(k)])];
+    for (int s = n.begin; s < n.end; ++s) {
+      const int t = tree_.primitive(s);
+      const Triangle& c = triangles_[std::size_t(t)];
       const Scalar d = ((row(x, c[0]) + row(x, c[1]) + row(x, c[2])) / 3 - mean).squaredNorm();
       if (best < 0 || d < best) {
         best = d;
-        n.centre = order_[std::size_t(k)];
+        p.centre = t;
       }
     }
   }
@@ -267,11 +258,11 @@ class NormalConeTree {
   // Appends the boundary loop of node n's triangles to loops_ when they form a consistently
   // oriented disk: each directed edge once, the boundary edges (whose reverse is not in the
   // patch) one closed loop through distinct vertices, V - E + F = 1, the vertices connected.
-  bool trace(const Node& n) {
+  bool trace(const typename BoxTree<Scalar>::Node& n) {
     directed_.clear();
     vertices_.clear();
-    for (int k = n.begin; k < n.end; ++k) {
-      const Triangle& c = triangles_[std::size_t(order_[std::size_t(k)])];
+    for (int s = n.begin; s < n.end; ++s) {
+      const Triangle& c = triangles_[std::size_t(tree_.primitive(s))];
       for (int j = 0; j < 3; ++j) {
         directed_.emplace_back(c[std::size_t(j)], c[std::size_t((j + 1) % 3)]);
         vertices_.push_back(c[std::size_t(j)]);
@@ -329,7 +320,7 @@ class NormalConeTree {
   // Appends the loop of the union of disks l and r to out (see contour()); false when they do
   // not meet along exactly one arc. The vertices are rows of the x given to build(). `edges`:
   // how many edges of l's loop r's has reversed.
-  bool glue(const Node& l, const Node& r, std::vector<int>& out, int* edges = nullptr) {
+  bool glue(const Patch& l, const Patch& r, std::vector<int>& out, int* edges = nullptr) {
     if (l.centre < 0 || r.centre < 0) return false;
     const int p = l.loop_end - l.loop_begin, q = r.loop_end - r.loop_begin;
     const auto lv = [&](int i) { return loops_[std::size_t(l.loop_begin + (i % p))]; };
@@ -364,31 +355,6 @@ class NormalConeTree {
     return ok;
   }
 
-  // Node k's box and normal bounds from its triangle's motion (a leaf) or its children's.
-  void fit(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, std::size_t k) {
-    Node& n = nodes_[k];
-    if (n.left < 0) {
-      leaf(x0, x1, g, n, normals_[k]);
-      return;
-    }
-    const std::size_t l = std::size_t(n.left), r = std::size_t(n.right);
-    n.box = nodes_[l].box.merged(nodes_[r].box);
-    normals_[k] = NormalBounds<Scalar>::merged(normals_[l], normals_[r]);
-  }
-
-  // A leaf: its triangle's swept box and normal bounds.
-  void leaf(const Points<Scalar>& x0, const Points<Scalar>& x1, Scalar g, Node& n,
-            Normals& b) const {
-    const Triangle& c = triangles_[std::size_t(order_[std::size_t(n.begin)])];
-    const V3 a0 = row(x0, c[0]), b0 = row(x0, c[1]), c0 = row(x0, c[2]);
-    const V3 a1 = row(x1, c[0]), b1 = row(x1, c[1]), c1 = row(x1, c[2]);
-    n.box = {a0.cwiseMin(b0).cwiseMin(c0).cwiseMin(a1).cwiseMin(b1).cwiseMin(c1),
-             a0.cwiseMax(b0).cwiseMax(c0).cwiseMax(a1).cwiseMax(b1).cwiseMax(c1)};
-    n.box.lo.array() -= g;
-    n.box.hi.array() += g;
-    b = NormalBounds<Scalar>::of_triangle(a0, b0, c0, a1, b1, c1);
-  }
-
   // The contour test of the file comment: the loop (count vertices) stays star-shaped about
   // the centroid of triangle `centre`, seen along the unit axis a, over the step.
   bool star(const Points<Scalar>& x0, const Points<Scalar>& x1, const V3& a, int centre,
@@ -402,8 +368,8 @@ class NormalConeTree {
   template <class Visit, class Skipped>
   void self(const Points<Scalar>& x0, const Points<Scalar>& x1, int k, Visit& visit,
             Skipped& skipped) {
-    const Node& n = nodes_[std::size_t(k)];
-    if (!changed_[std::size_t(k)] || n.left < 0) return;
+    const auto& n = tree_.node(std::size_t(k));
+    if (!tree_.changed(std::size_t(k)) || n.is_leaf()) return;
     if (cannot_touch_itself(x0, x1, std::size_t(k))) {
       skipped(std::size_t(k), std::size_t(k));
       return;
@@ -420,52 +386,42 @@ class NormalConeTree {
   // a disk glued along an arc either.
   bool cannot_touch(const Points<Scalar>& x0, const Points<Scalar>& x1, int i, int j,
                     bool& may_glue) {
-    const Node& a = nodes_[std::size_t(i)];
-    const Node& b = nodes_[std::size_t(j)];
+    const auto& a = tree_.node(std::size_t(i));
+    const auto& b = tree_.node(std::size_t(j));
+    const Patch& pa = patches_[std::size_t(i)];
+    const Patch& pb = patches_[std::size_t(j)];
     V3 axis;
     // Patches that share a vertex have home boxes that meet at it.
-    if (!may_glue || a.centre < 0 || b.centre < 0 || (a.left < 0 && b.left < 0) ||
-        !a.home.overlaps(b.home) ||
-        !NormalBounds<Scalar>::merged(normals_[std::size_t(i)], normals_[std::size_t(j)])
-             .axis(axis))
+    if (!may_glue || pa.centre < 0 || pb.centre < 0 || (a.is_leaf() && b.is_leaf()) ||
+        !pa.home.overlaps(pb.home) ||
+        !Normals::merged(normals_[std::size_t(i)], normals_[std::size_t(j)]).axis(axis))
       return false;
     union_loop_.clear();  // reserved in build(): the two longest loops at most
     int edges = 0;
-    if (!glue(a, b, union_loop_, &edges)) {
+    if (!glue(pa, pb, union_loop_, &edges)) {
       may_glue = edges > 0;
       return false;
     }
-    const int centre = a.end - a.begin >= b.end - b.begin ? a.centre : b.centre;
+    const int centre = a.count() >= b.count() ? pa.centre : pb.centre;
     return star(x0, x1, axis, centre, union_loop_.data(), int(union_loop_.size()));
-  }
-
-  template <class Visit>
-  void query(int k, const Box& b, Visit& visit) const {
-    const Node& n = nodes_[std::size_t(k)];
-    if (!changed_[std::size_t(k)] || !n.box.overlaps(b)) return;
-    if (n.left < 0) {
-      visit(order_[std::size_t(n.begin)]);
-      return;
-    }
-    query(n.left, b, visit);
-    query(n.right, b, visit);
   }
 
   template <class Visit, class Skipped>
   void pair(const Points<Scalar>& x0, const Points<Scalar>& x1, int i, int j, Visit& visit,
             Skipped& skipped, bool may_glue = true) {
-    const Node& a = nodes_[std::size_t(i)];
-    const Node& b = nodes_[std::size_t(j)];
-    if (!(changed_[std::size_t(i)] || changed_[std::size_t(j)]) || !a.box.overlaps(b.box)) return;
+    const auto& a = tree_.node(std::size_t(i));
+    const auto& b = tree_.node(std::size_t(j));
+    if (!(tree_.changed(std::size_t(i)) || tree_.changed(std::size_t(j))) || !a.box.overlaps(b.box))
+      return;
     if (cannot_touch(x0, x1, i, j, may_glue)) {
       skipped(std::size_t(i), std::size_t(j));
       return;
     }
-    if (a.left < 0 && b.left < 0) {
-      visit(order_[std::size_t(a.begin)], order_[std::size_t(b.begin)]);
+    if (a.is_leaf() && b.is_leaf()) {
+      visit(tree_.primitive(a.begin), tree_.primitive(b.begin));
       return;
     }
-    if (b.left < 0 || (a.left >= 0 && a.end - a.begin >= b.end - b.begin)) {
+    if (b.is_leaf() || (!a.is_leaf() && a.count() >= b.count())) {
       pair(x0, x1, a.left, j, visit, skipped, may_glue);
       pair(x0, x1, a.right, j, visit, skipped, may_glue);
     } else {
@@ -475,12 +431,10 @@ class NormalConeTree {
   }
 
   std::vector<Triangle> triangles_;
-  std::vector<Node> nodes_;
+  BoxTree<Scalar> tree_;
+  std::vector<Patch> patches_;    // by node
   std::vector<Normals> normals_;  // by node
-  std::vector<int> order_, loops_;
-  std::vector<int> leaf_of_;   // a triangle's leaf
-  std::vector<char> changed_;  // nodes the last refit() changed
-  std::vector<V3> centres_;
+  std::vector<int> loops_;
   // Scratch.
   std::vector<int> position_;    // a vertex's place in a loop, or -1 (glue()'s scratch)
   std::vector<int> union_loop_;  // the loop of two patches' union (cannot_touch()'s scratch)

@@ -1,21 +1,21 @@
 #pragma once
 /// @file
-/// @brief TriangleMesh: a static triangle mesh with a bounding-volume hierarchy (axis-aligned
-/// boxes, split at the median centroid of the longest axis), and the two queries a mesh collider
-/// makes: the closest point within a distance, and the first crossing of a segment. Both visit
-/// only the boxes that can hold an answer: O(log m) per query on a well-shaped mesh of m
-/// triangles, and they allocate nothing (a fixed stack of 128 entries; the tree's depth is at most
-/// log2(m) + 1).
+/// @brief TriangleMesh: a static triangle mesh with a bounding-volume hierarchy
+/// (contact/broad_phase/box_tree.hpp, at most four triangles a leaf), and the two queries a mesh
+/// collider makes: the closest point within a distance, and the first crossing of a segment.
+/// Both enter only the boxes that can hold an answer: O(log m) per query on a well-shaped mesh of
+/// m triangles; they allocate nothing. Their answers do not depend on the tree: among triangles
+/// at the same distance, or crossed at the same parameter, the one of lowest index is returned.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <vector>
 
 #include "massspring/contact/aligned_box.hpp"
+#include "massspring/contact/broad_phase/box_tree.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/detail/validate.hpp"
 #include "massspring/error.hpp"
@@ -57,12 +57,10 @@ class TriangleMesh {
                             ", ", f_(t, 2), ") has zero area"));
       normals_.row(t) = (nrm / len).transpose();
     }
-    std::vector<int> order(std::size_t(m), 0);
-    std::iota(order.begin(), order.end(), 0);
-    nodes_.reserve(std::size_t(2 * m));
-    nodes_.emplace_back();
-    build(order, 0, m, 0);
-    triangle_of_slot_ = std::move(order);
+    std::vector<V3> centres(static_cast<std::size_t>(m));
+    for (int t = 0; t < m; ++t) centres[std::size_t(t)] = box(t).centre();
+    tree_.build(centres, kLeaf);
+    tree_.refit([this](int t) { return box(t); });
     lo_ = v_.colwise().minCoeff().transpose();
     hi_ = v_.colwise().maxCoeff().transpose();
   }
@@ -79,114 +77,64 @@ class TriangleMesh {
   [[nodiscard]] const V3& upper() const { return hi_; }
 
   /// @brief The closest point of the mesh to p among those at distance < r; false when there is
-  /// none. `closest` and `triangle` are set only when true.
+  /// none. `closest` and `triangle` are set only when true; of several triangles at the least
+  /// distance, `triangle` is the one of lowest index.
   bool closest_within(const V3& p, Scalar r, V3& closest, int& triangle) const {
     Scalar best = r * r;
     bool found = false;
-    int stack[kStack];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[std::size_t(stack[--top])];
-      if (node.box.squared_distance(p) >= best) continue;
-      if (node.count > 0) {
-        for (int s = node.first; s < node.first + node.count; ++s) {
-          const int t = triangle_of_slot_[std::size_t(s)];
-          const V3 q = closest_point_on_triangle(p, vertex(t, 0), vertex(t, 1), vertex(t, 2));
-          const Scalar d2 = (q - p).squaredNorm();
-          if (d2 < best) {
-            best = d2;
-            closest = q;
-            triangle = t;
-            found = true;
-          }
-        }
-      } else if (top + 2 <= kStack) {
-        stack[top++] = node.first;
-        stack[top++] = node.first + 1;
+    // A box at the best distance may still hold a tie of lower index, once one is found.
+    const auto enter = [&](std::size_t k) {
+      const Scalar d2 = tree_.node(k).box.squared_distance(p);
+      return d2 < best || (found && d2 == best);
+    };
+    tree_.descend(enter, [&](int t) {
+      const V3 q = closest_point_on_triangle(p, vertex(t, 0), vertex(t, 1), vertex(t, 2));
+      const Scalar d2 = (q - p).squaredNorm();
+      if (d2 < best || (found && d2 == best && t < triangle)) {
+        best = d2;
+        closest = q;
+        triangle = t;
+        found = true;
       }
-    }
+    });
     return found;
   }
 
   /// @brief The first crossing (smallest t in [0, 1]) of the segment p0 -> p1 with a triangle;
-  /// false when there is none.
+  /// false when there is none. Of several triangles crossed at t, `triangle` is the one of lowest
+  /// index.
   bool first_crossing(const V3& p0, const V3& p1, Scalar& t_hit, int& triangle) const {
     const AlignedBox3<Scalar> path{p0.cwiseMin(p1), p0.cwiseMax(p1)};
     Scalar best = std::numeric_limits<Scalar>::infinity();
-    int stack[kStack];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[std::size_t(stack[--top])];
-      if (!node.box.overlaps(path)) continue;
-      if (node.count > 0) {
-        for (int s = node.first; s < node.first + node.count; ++s) {
-          const int t = triangle_of_slot_[std::size_t(s)];
+    tree_.descend(
+        [&](std::size_t k) { return tree_.node(k).box.overlaps(path); },
+        [&](int t) {
           Scalar u = 0;
           if (segment_crosses_triangle(p0, p1, vertex(t, 0), vertex(t, 1), vertex(t, 2), u) &&
-              u < best) {
+              (u < best || (u == best && t < triangle))) {
             best = u;
             triangle = t;
           }
-        }
-      } else if (top + 2 <= kStack) {
-        stack[top++] = node.first;
-        stack[top++] = node.first + 1;
-      }
-    }
+        });
     if (!(best <= 1)) return false;
     t_hit = best;
     return true;
   }
 
  private:
-  static constexpr int kStack = 128;
   static constexpr int kLeaf = 4;  // triangles per leaf at most
 
-  struct Node {
-    AlignedBox3<Scalar> box;
-    int first = 0;  // leaf: first slot; inner: index of the left child (right = first + 1)
-    int count = 0;  // leaf: number of triangles; inner: 0
-  };
-
-  // Fills node `index` with the subtree over order[begin, end); an inner node's two children are
-  // appended next to each other (left = first, right = first + 1).
-  void build(std::vector<int>& order, int begin, int end, int index) {
-    auto box = AlignedBox3<Scalar>::empty();
-    auto centroids = AlignedBox3<Scalar>::empty();
-    for (int s = begin; s < end; ++s) {
-      const int t = order[std::size_t(s)];
-      for (int k = 0; k < 3; ++k) box.extend(vertex(t, k));
-      centroids.extend(centroid(t));
-    }
-    nodes_[std::size_t(index)].box = box;
-    if (end - begin <= kLeaf) {
-      nodes_[std::size_t(index)].first = begin;
-      nodes_[std::size_t(index)].count = end - begin;
-      return;
-    }
-    int axis = 0;
-    (centroids.hi - centroids.lo).maxCoeff(&axis);
-    const int mid = begin + (end - begin) / 2;
-    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                     [&](int a, int b) { return centroid(a)(axis) < centroid(b)(axis); });
-    const int left = int(nodes_.size());
-    nodes_.emplace_back();
-    nodes_.emplace_back();
-    nodes_[std::size_t(index)].first = left;
-    nodes_[std::size_t(index)].count = 0;
-    build(order, begin, mid, left);
-    build(order, mid, end, left + 1);
+  // The box of triangle t's corners.
+  AlignedBox3<Scalar> box(int t) const {
+    auto b = AlignedBox3<Scalar>::empty();
+    for (int k = 0; k < 3; ++k) b.extend(vertex(t, k));
+    return b;
   }
-
-  V3 centroid(int t) const { return (vertex(t, 0) + vertex(t, 1) + vertex(t, 2)) / Scalar(3); }
 
   Points<Scalar> v_;
   Triangles f_;
   Points<Scalar> normals_;
-  std::vector<Node> nodes_;
-  std::vector<int> triangle_of_slot_;
+  BoxTree<Scalar> tree_;
   V3 lo_ = V3::Zero(), hi_ = V3::Zero();
 };
 
