@@ -12,7 +12,10 @@
 //                   [--contact-weight A] [--iterations N] [--acceleration none|chebyshev|anderson]
 // (the last three replace a default, for comparisons; --no-surface, which needs
 // --no-self-collision, removes the system's surface, so that no end-of-step pass tests the
-// obstacles' edges and corners: crossings are still counted on the scene's triangles)
+// obstacles' edges and corners: crossings are still counted on the scene's triangles).
+// With MS_TRACE=1 in the environment each step's report goes to stderr: ok, finite, blown up,
+// contact resolved, impulses, zone points, iterations, the largest strain, the crossings and the
+// energy the contact response added (StepReport::contact_work, "work", J).
 //
 // Scenes: drape31 (examples/scenes/drape.json, the README's drape), drape81 (the Bullet
 // comparison's cloth), clothesline, ribbon_pile, two_cloths, five_cloths, tablecloth, twist,
@@ -257,10 +260,11 @@ void run(const Case& c, const char* integrator_name, bool self_collision, const 
     if (std::getenv("MS_TRACE"))
       std::fprintf(stderr,
                    "step %d ok %d finite %d blew %d resolved %d imp %d zone %d it %d strain %.3f "
-                   "crossings %d\n",
+                   "crossings %d work %.4g\n",
                    k, int(report.ok()), int(report.finite), int(report.blew_up),
                    int(report.contact_resolved), report.contact_impulses,
-                   report.contact_zone_points, report.iterations, strain(s).max, n);
+                   report.contact_zone_points, report.iterations, strain(s).max, n,
+                   report.contact_work);
   }
   const Strain end = strain(s);
   std::printf(

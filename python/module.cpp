@@ -69,6 +69,9 @@ void bind_step_report(py::module_& m) {
                     "Points surface contact's impact zones moved rigidly in this step.")
       .def_readonly("contact_resolved", &StepReport::contact_resolved,
                     "False when surface contact could not remove every crossing (nothing changed).")
+      .def_readonly("contact_work", &StepReport::contact_work,
+                    "Energy [J] the end-of-step contact response added to the end state (kinetic "
+                    "of the free points plus potential, after less before); 0 without contact.")
       .def("ok", &StepReport::ok,
            "finite, not blown up, the factorization succeeded and the contact was resolved")
       .def("__repr__", [](const StepReport& r) {

@@ -71,3 +71,22 @@ def test_the_system_keeps_copies():
     assert s.collider(0).static_friction == 0.9
     s.clear_colliders()
     assert s.num_colliders == 0
+
+
+def test_a_step_reports_the_energy_its_contact_added():
+    """StepReport.contact_work: a point at 0.05 m above the plane y = 0 moving down at 3 m/s
+    (mass 2 kg, no force) is stopped on it within one step of 0.1 s, losing its kinetic energy,
+    m |v|^2 / 2 = 9 J; without the plane the work is 0."""
+    for plane, expected in ((True, -9.0), (False, 0.0)):
+        s = ms.MassSpringSystem([[0.0, 0.05, 0], [5, 5, 5]], [[0, 1]], 2.0, 0.0)
+        s.pin(1)
+        velocities = s.velocities.copy()
+        velocities[0] = [0, -3, 0]
+        s.velocities = velocities
+        if plane:
+            s.add_collider(ms.Collider.plane([0, 0, 0], [0, 1, 0]))
+        solver = ms.SymplecticEuler()
+        solver.precompute(s, 0.1)
+        report = solver.step(s)
+        assert report.ok()
+        assert report.contact_work == pytest.approx(expected, abs=1e-12)

@@ -401,6 +401,9 @@ struct Outcome {
   bool unresolved = false;        // surface contact left a crossing
   double guard_limit = 0;         // the divergence guard's limit and scale [J]
   double guard_scale = 0;
+  int contact_work_steps = 0;    // steps whose contact response added energy
+  double most_contact_work = 0;  // the most it added in one step [J], and in which
+  long long most_contact_work_at = 0;
 };
 
 // The steps: each timed, --shrink's rest lengths set before it, its frame written after it (and
@@ -447,6 +450,13 @@ Outcome run_steps(const Config& c, Setup<System>& s, const Plan& p, Solver& solv
       break;
     }
     ++o.frame;
+    if (report.contact_work > 0) {
+      ++o.contact_work_steps;
+      if (report.contact_work > o.most_contact_work) {
+        o.most_contact_work = report.contact_work;
+        o.most_contact_work_at = o.frame;
+      }
+    }
     files.write_frame(o.frame);
     if (c.save_every > 0 && o.frame % c.save_every == 0) save_state(c, s, p, solver, o.frame);
     progress.step_done(step);
@@ -487,6 +497,11 @@ inline void print_times(const Config& c, const Outcome& o) {
         mean, percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
   else
     std::printf("%.3f\n", percentile(ms, 0.5));
+  if (!c.quiet && o.contact_work_steps > 0)
+    std::printf(
+        "the contact response added energy in %d steps, at most %.3g J (step %lld): "
+        "StepReport::contact_work, see docs/contact.md#limits\n",
+        o.contact_work_steps, o.most_contact_work, o.most_contact_work_at);
   std::fflush(stdout);
 }
 

@@ -61,6 +61,15 @@ struct StepReport {
   /// @brief False when surface contact could not remove every crossing within its rounds. Nothing
   /// was changed then.
   bool contact_resolved = true;
+  /// @brief The energy [J] the end-of-step collision response (contact/contact_pipeline.hpp: the
+  /// handler, the colliders' point response and surface contact) added to the step's end state:
+  /// E after it less E before it, E the kinetic energy of the free points plus the potential of
+  /// the springs and force terms (integrators/detail/energy_bound.hpp). An inelastic response
+  /// that only stops approaching points gives about 0 or less; a large positive value means its
+  /// position corrections stretched springs (docs/contact.md, Limits) and the step's result is
+  /// suspect even when ok(). 0 when the system has no collision response; NaN only when the end
+  /// state is not finite (then `finite` is false).
+  double contact_work = 0;
 
   /// @brief A step succeeded when it could factorize, its result is finite, its energy did not
   /// blow up and its contact was resolved.

@@ -23,10 +23,11 @@ from .spec import BE, DEFAULTS, FMS, FOSSSIM_INTEGRATORS
 # The per-step statistics: the StepReport fields, stored under the same names.
 REPORT_FIELDS = ("iterations", "relative_decrease", "energy", "residual", "converged",
                  "convergence", "finite", "refactorized", "factorization_failed", "blew_up",
-                 "contact_impulses", "contact_zone_points", "contact_resolved")
+                 "contact_impulses", "contact_zone_points", "contact_resolved", "contact_work")
 REPORT_TYPES = {"iterations": np.int32, "contact_impulses": np.int32,
                 "contact_zone_points": np.int32, "convergence": np.int8, "relative_decrease":
-                np.float64, "energy": np.float64, "residual": np.float64}
+                np.float64, "energy": np.float64, "residual": np.float64,
+                "contact_work": np.float64}
 
 
 def scene_bundle(path, files):

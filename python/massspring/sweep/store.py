@@ -20,7 +20,7 @@ Layout (docs/sweeps.md):
                            and the StepReport fields (iterations, relative_decrease, energy,
                            residual, converged, convergence, finite, refactorized,
                            factorization_failed, blew_up, contact_impulses,
-                           contact_zone_points, contact_resolved)
+                           contact_zone_points, contact_resolved, contact_work [J])
 
 A run is written as /runs/<id>.partial, renamed to /runs/<id> and the file flushed: a group
 without the suffix is complete. A .partial group (the writer was killed mid-write) is deleted

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 
 #include "massspring/contact/collision_step.hpp"
 #include "massspring/contact/response/surface_contact_slot.hpp"
@@ -18,13 +19,16 @@ namespace massspring::detail {
 /// 2. the collision response, on the step's CollisionStep built once (contact/
 ///    contact_pipeline.hpp: the system's handler, the colliders' point response, then surface
 ///    contact, after which no edge crosses a triangle of the cloth or an obstacle's edge);
-/// 3. pinned points at their targets again (an impact zone may have moved one);
+/// 3. pinned points at their targets again (an impact zone may have moved one), and
+///    report.contact_work, the energy E(x, v) (energy_bound.hpp) of the end state after the
+///    response less before it;
 /// 4. when every value is finite, the contact was resolved and the end state's energy is within
 ///    `bound` (energy_bound.hpp; else report.blew_up): the end state is written to the system and
 ///    the colliders take their end-of-step pose; otherwise the system is left as it was. With
 ///    `swap_buffers`, x_end and v_end are swapped in (they hold the start state afterwards);
 ///    without, copied (the system's arrays keep their memory, which Python's views of them need).
-/// Sets report.finite, report.blew_up and the contact fields. Allocates nothing once the contact's
+/// Sets report.finite, report.blew_up and the contact fields. With a collision response, costs
+/// one more evaluation of the energy (the one after it serves the bound as well). Allocates nothing once the contact's
 /// work arrays have grown. `collider_friction` false: the colliders act as frictionless
 /// (FastMassSpring's contact term applied their friction inside the iteration). `snap_pins`
 /// false skips step 1 (FastMassSpring's penalty pins, whose solve leaves each pinned point where
@@ -44,7 +48,9 @@ void commit_step(System& system, typename System::PointsType& x_end,
     }
   };
   if (snap_pins) pin();
+  double end_energy = std::numeric_limits<double>::quiet_NaN();  // not evaluated yet
   if (system.has_collision_response()) {
+    const double proposed_energy = EnergyBound<System>::energy(system, x_end, v_end);
     const contact::CollisionStep<typename System::Scalar> step{
         x0,    system.velocities(), x_end, v_end, dt, system.masses(), system.inverse_masses(),
         pinned};
@@ -53,12 +59,15 @@ void commit_step(System& system, typename System::PointsType& x_end,
     report.contact_zone_points = r.zone_points;
     report.contact_resolved = r.resolved;
     pin();
+    end_energy = EnergyBound<System>::energy(system, x_end, v_end);
+    report.contact_work = end_energy - proposed_energy;
   }
   // One vectorised pass: a sum is finite only when every term is (a sum of finite values can
   // overflow only when they are near 1e308, which is divergence anyway).
   report.finite = std::isfinite(x_end.sum() + v_end.sum());
   if (report.finite && report.contact_resolved)
-    report.blew_up = bound.exceeded(system, x_end, v_end);
+    report.blew_up = std::isnan(end_energy) ? bound.exceeded(system, x_end, v_end)
+                                            : bound.exceeded(system, end_energy);
   if (report.finite && report.contact_resolved && !report.blew_up) {
     if (swap_buffers) {
       system.positions().swap(x_end);

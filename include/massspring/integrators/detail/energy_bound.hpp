@@ -81,7 +81,13 @@ class EnergyBound {
   [[nodiscard]] bool exceeded(const System& system, const PointsType& x,
                               const PointsType& v) const {
     if (!(growth_ > 0)) return false;
-    return !(energy(system, x, v) <= limit(system));  // NaN included
+    return exceeded(system, energy(system, x, v));
+  }
+
+  /// @brief exceeded() for a state whose energy(system, x, v) is `end_energy` [J].
+  [[nodiscard]] bool exceeded(const System& system, double end_energy) const {
+    if (!(growth_ > 0)) return false;
+    return !(end_energy <= limit(system));  // NaN included
   }
 
   /// @brief The most energy [J] a step from the system's current state may end with:
@@ -92,7 +98,8 @@ class EnergyBound {
            growth_ * (scale_ + collider_scale(system));
   }
 
- private:
+ /// @brief E(x, v) = K_free(v) + U(x) [J] of the class comment: the kinetic energy of the points
+  /// that are not pinned plus the potential of the springs and force terms.
   static double energy(const System& system, const PointsType& x, const PointsType& v) {
     double kinetic = 0;
     const auto& masses = system.masses();
@@ -101,6 +108,7 @@ class EnergyBound {
     return 0.5 * kinetic + double(potential_energy(system, x));
   }
 
+ private:
   // S_c = 2 M V^2 [J] (see the class).
   static double collider_scale(const System& system) {
     const auto& colliders = system.colliders();
