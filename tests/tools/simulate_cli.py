@@ -34,6 +34,10 @@ CASE is one of
              frames exactly (plain, Chebyshev, Anderson, backward Euler, --shrink; a scene with
              moving colliders of every kind, with every integrator; --self-collision, whose
              surface and thickness the state holds)
+  work       the line on the energy the contact response added (StepReport::contact_work):
+             absent for the drape, whose response only stops points, and after --quiet; present,
+             with the step and the scene's energy scale, for the clothesline, whose self-collision
+             pass stretches springs (docs/contact.md, Limits)
 Only the standard library."""
 
 import hashlib
@@ -779,6 +783,31 @@ def resume(simulate, source, work):
     print(f"OK: {len(cases)} runs resumed bit for bit (10 + 10 frames == 20 frames)")
 
 
+WORK = re.compile(r"^the contact response added energy in (\d+) steps, at most ([0-9.e+-]+) J "
+                  r"\(step (\d+); the scene's energy scale is ([0-9.e+-]+) J\)")
+
+
+def contact_work_line(simulate, source, work_dir):
+    scenes = os.path.join(source, "examples", "scenes")
+    for name, expected in (("drape", False), ("clothesline", True)):
+        for extra in ([], ["--quiet"]):
+            args = [os.path.join(scenes, name + ".json"), "--dt", "0.0333333333333", "--duration",
+                    "3"] + extra
+            result = run(simulate, args, work_dir)
+            check(result.returncode == 0,
+                  f"{name} {extra}: exit {result.returncode} {result.stderr}")
+            lines = [m for m in map(WORK.match, result.stdout.splitlines()) if m]
+            if extra:
+                check(not lines, f"{name} --quiet: {result.stdout!r}")
+                continue
+            check(bool(lines) == expected, f"{name}: {result.stdout!r}")
+            if lines:
+                steps, most, at, scale = lines[0].groups()
+                check(1 <= int(steps) <= 90 and 1 <= int(at) <= 90, lines[0].group(0))
+                check(float(most) > 1e-3 * float(scale) > 0, lines[0].group(0))
+    print("OK: no contact-work line for the drape, one for the clothesline; none with --quiet")
+
+
 def main():
     table = "--table" in sys.argv
     argv = [a for a in sys.argv if a != "--table"]
@@ -799,7 +828,8 @@ def main():
              "hint": lambda: hint(simulate, source, work),
              "readme": lambda: readme(simulate, source, work),
              "folders": lambda: folders(simulate, source, work),
-             "resume": lambda: resume(simulate, source, work)}
+             "resume": lambda: resume(simulate, source, work),
+             "work": lambda: contact_work_line(simulate, source, work)}
     if case not in cases:
         fail(f"unknown case {case}")
     cases[case]()

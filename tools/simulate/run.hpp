@@ -497,11 +497,13 @@ inline void print_times(const Config& c, const Outcome& o) {
         mean, percentile(ms, 0.1), percentile(ms, 0.9), percentile(ms, 1.0));
   else
     std::printf("%.3f\n", percentile(ms, 0.5));
-  if (!c.quiet && o.contact_work_steps > 0)
+  // Said when one step's response added more than a thousandth of the scene's energy scale (the
+  // divergence guard's; any energy without the guard): its corrections stretched springs.
+  if (!c.quiet && o.contact_work_steps > 0 && o.most_contact_work > 1e-3 * o.guard_scale)
     std::printf(
-        "the contact response added energy in %d steps, at most %.3g J (step %lld): "
-        "StepReport::contact_work, see docs/contact.md#limits\n",
-        o.contact_work_steps, o.most_contact_work, o.most_contact_work_at);
+        "the contact response added energy in %d steps, at most %.3g J (step %lld; the scene's "
+        "energy scale is %.3g J): StepReport::contact_work, see docs/contact.md#limits\n",
+        o.contact_work_steps, o.most_contact_work, o.most_contact_work_at, o.guard_scale);
   std::fflush(stdout);
 }
 
