@@ -28,11 +28,11 @@ namespace massspring::detail {
 ///    `swap_buffers`, x_end and v_end are swapped in (they hold the start state afterwards);
 ///    without, copied (the system's arrays keep their memory, which Python's views of them need).
 /// Sets report.finite, report.blew_up and the contact fields. With a collision response, costs
-/// one more evaluation of the energy (the one after it serves the bound as well). Allocates nothing once the contact's
-/// work arrays have grown. `collider_friction` false: the colliders act as frictionless
-/// (FastMassSpring's contact term applied their friction inside the iteration). `snap_pins`
-/// false skips step 1 (FastMassSpring's penalty pins, whose solve leaves each pinned point where
-/// its stiff spring holds it; step 3 still runs when there is a collision response).
+/// one more evaluation of the energy (the one after it serves the bound as well). Allocates nothing
+/// once the contact's work arrays have grown. `collider_friction` false: the colliders act as
+/// frictionless (FastMassSpring's contact term applied their friction inside the iteration).
+/// `snap_pins` false skips step 1 (FastMassSpring's penalty pins, whose solve leaves each pinned
+/// point where its stiff spring holds it; step 3 still runs when there is a collision response).
 template <class System>
 void commit_step(System& system, typename System::PointsType& x_end,
                  typename System::PointsType& v_end, typename System::Scalar dt, StepReport& report,

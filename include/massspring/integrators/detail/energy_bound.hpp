@@ -98,7 +98,7 @@ class EnergyBound {
            growth_ * (scale_ + collider_scale(system));
   }
 
- /// @brief E(x, v) = K_free(v) + U(x) [J] of the class comment: the kinetic energy of the points
+  /// @brief E(x, v) = K_free(v) + U(x) [J] of the class comment: the kinetic energy of the points
   /// that are not pinned plus the potential of the springs and force terms.
   static double energy(const System& system, const PointsType& x, const PointsType& v) {
     double kinetic = 0;
