@@ -62,16 +62,22 @@ void bind_step_report(py::module_& m) {
       .def_readonly("finite", &StepReport::finite)
       .def_readonly("refactorized", &StepReport::refactorized)
       .def_readonly("factorization_failed", &StepReport::factorization_failed)
-      .def_readonly("blew_up", &StepReport::blew_up)
+      .def_readonly(
+          "blew_up", &StepReport::blew_up,
+          "True when the end state's energy passed the integrator's bound (energy_growth) "
+          "or a DivergenceGuard's, or the contact response added more than S / 10 + S_c "
+          "(contact_work): nothing changed.")
       .def_readonly("contact_impulses", &StepReport::contact_impulses,
                     "Surface contact's repulsion and collision impulses in this step.")
       .def_readonly("contact_zone_points", &StepReport::contact_zone_points,
                     "Points surface contact's impact zones moved rigidly in this step.")
       .def_readonly("contact_resolved", &StepReport::contact_resolved,
                     "False when surface contact could not remove every crossing (nothing changed).")
-      .def_readonly("contact_work", &StepReport::contact_work,
-                    "Energy [J] the end-of-step contact response added to the end state (kinetic "
-                    "of the free points plus potential, after less before); 0 without contact.")
+      .def_readonly(
+          "contact_work", &StepReport::contact_work,
+          "Energy [J] the end-of-step contact response added to the end state (kinetic "
+          "of the free points plus potential, after less before); 0 without contact. Above "
+          "S / 10 + S_c the step is refused (blew_up).")
       .def("ok", &StepReport::ok,
            "finite, not blown up, the factorization succeeded and the contact was resolved")
       .def("__repr__", [](const StepReport& r) {

@@ -401,8 +401,9 @@ struct Outcome {
   bool unresolved = false;        // surface contact left a crossing
   double guard_limit = 0;         // the divergence guard's limit and scale [J]
   double guard_scale = 0;
-  int contact_work_steps = 0;    // steps whose contact response added energy
-  double most_contact_work = 0;  // the most it added in one step [J], and in which
+  double failed_contact_work = 0;  // the contact work of the step that failed [J]
+  int contact_work_steps = 0;      // steps whose contact response added energy
+  double most_contact_work = 0;    // the most it added in one step [J], and in which
   long long most_contact_work_at = 0;
 };
 
@@ -446,6 +447,7 @@ Outcome run_steps(const Config& c, Setup<System>& s, const Plan& p, Solver& solv
     if (!report.ok()) {
       o.diverged_at = o.frame + 1;
       o.blew_up = report.blew_up;
+      o.failed_contact_work = report.contact_work;
       o.unresolved = !report.contact_resolved;
       break;
     }
@@ -524,6 +526,14 @@ inline int exit_status(const Config& c, const Plan& p, const Outcome& o, bool fa
                  "state (steps %s%lld written)\n",
                  o.diverged_at, o.guard_limit, c.guard_growth, o.guard_scale, c.guard_growth,
                  range.c_str(), o.diverged_at - 1);
+    // The integrators refuse a step whose collision response adds more than S / 10 + S_c
+    // (integrators/detail/energy_bound.hpp); S is the guard's scale at the start of the run.
+    if (o.failed_contact_work > 0.1 * o.guard_scale)
+      std::fprintf(stderr,
+                   "massspring-simulate: in that step the contact response added %.6g J, more "
+                   "than a tenth of the scale: it pushed points against the springs "
+                   "(StepReport::contact_work, see docs/contact.md#limits)\n",
+                   o.failed_contact_work);
     print_hint();
     return kExitDiverged;
   }

@@ -4,12 +4,15 @@
 // frictionless response puts the point on the plane at rest), and the energies before and after
 // the response computed here by hand: a point that only stops loses its kinetic energy; a point
 // that a spring pulls into the plane is pushed back against the spring, which gains more
-// potential energy than the point loses kinetic energy.
+// potential energy than the point loses kinetic energy. And the energy bound's contact limit
+// (energy_bound.hpp): a response that adds more than S / 10 (no moving collider) refuses the
+// step, S computed here by hand from the start state.
 #include <doctest/doctest.h>
 
 #include <Eigen/Core>
 #include <cmath>
 #include <massspring/contact/colliders/colliders.hpp>
+#include <massspring/integrators/backward_euler.hpp>
 #include <massspring/integrators/symplectic_euler.hpp>
 
 namespace commit_step_test {
@@ -35,6 +38,35 @@ System over_plane(const V3& anchor, double l0, double m, double k, const V3& v0,
 }
 
 double spring_energy(double k, double l, double l0) { return 0.5 * k * (l - l0) * (l - l0); }
+
+// One backward Euler step (Newton, exact here: the spring stays vertical, so the force is linear
+// in y) of over_plane(anchor (0, -1, 0), l0, m = 2, k = 100, at rest) at h = 1 s, the contact
+// term off so that only the end-of-step response sees the plane; `growth` the energy bound.
+massspring::StepReport implicit_step_into_plane(System& s, double growth) {
+  massspring::BackwardEuler<System> solver;
+  solver.options.contact_weight = 0;
+  solver.options.energy_growth = growth;
+  solver.precompute(s, 1.0);
+  return solver.step(s);
+}
+
+// The closed forms of the implicit step above from y = 0.05: m (y - 0.05) / h^2 = -k (y + 1 - l0)
+// gives y = (m 0.05 - k (1 - l0)) / (m + k) and v = y - 0.05; the response then puts the point on
+// the plane at rest, the spring 1 m long. Returns the response's work E(after) - E(proposed).
+double implicit_work(double l0) {
+  const double m = 2, k = 100;
+  const double y = (m * 0.05 - k * (1 - l0)) / (m + k), v = y - 0.05;
+  const double proposed = spring_energy(k, y + 1, l0) + 0.5 * m * v * v;
+  return spring_energy(k, 1.0, l0) - proposed;
+}
+
+// The bound's contact limit S / 10 (energy_bound.hpp; no moving collider, so S_c = 0) for the
+// start state: S = |E| + K + k l0^2 / 2 + D sum_i |F_i|, E = k (1.05 - l0)^2 / 2, K = 0, D = 1.05
+// (the points' box), the spring's force k (1.05 - l0) on each of the two points.
+double contact_limit(double l0) {
+  const double k = 100, stretch = 1.05 - l0;
+  return 0.1 * (0.5 * k * stretch * stretch + 0.5 * k * l0 * l0 + 1.05 * 2 * k * stretch);
+}
 
 }  // namespace commit_step_test
 
@@ -79,4 +111,40 @@ TEST_CASE("contact_work: 0 without a collision response") {
   REQUIRE(r.ok());
   CHECK(s.positions()(1, 1) == doctest::Approx(-0.225));  // fell through where the plane was
   CHECK(r.contact_work == 0);
+}
+
+TEST_CASE("contact_work above S / 10: the step is refused as a blow-up, the state kept") {
+  // l0 = 0.05: the implicit step relaxes the spring to y = -0.930 (E 0.98 J); the plane puts the
+  // point back at y = 0, where the spring holds 45.1 J: work 44.1 J > S / 10 = 26.0 J.
+  const double l0 = 0.05;
+  REQUIRE(implicit_work(l0) > contact_limit(l0) * 1.5);
+  System s = over_plane(V3(0, -1, 0), l0, 2, 100, V3::Zero());
+  const massspring::Points<double> before = s.positions();
+  const massspring::StepReport r = implicit_step_into_plane(s, 100);
+  CHECK(r.blew_up);
+  CHECK_FALSE(r.ok());
+  CHECK(r.finite);
+  CHECK(r.contact_resolved);
+  CHECK(r.contact_work == doctest::Approx(implicit_work(l0)).epsilon(1e-6));
+  CHECK(s.positions() == before);
+  CHECK(s.velocities().isZero(0));
+
+  // With the energy bound off (growth 0) the same step is committed.
+  System off = over_plane(V3(0, -1, 0), l0, 2, 100, V3::Zero());
+  const massspring::StepReport r0 = implicit_step_into_plane(off, 0);
+  CHECK(r0.ok());
+  CHECK(std::abs(off.positions()(1, 1)) <= 1e-12);
+  CHECK(r0.contact_work == doctest::Approx(implicit_work(l0)).epsilon(1e-6));
+}
+
+TEST_CASE("contact_work below S / 10: the step is committed") {
+  // l0 = 0.5: work 12.2 J against S / 10 = 14.3 J.
+  const double l0 = 0.5;
+  REQUIRE(implicit_work(l0) < contact_limit(l0) * 0.9);
+  REQUIRE(implicit_work(l0) > contact_limit(l0) * 0.5);
+  System s = over_plane(V3(0, -1, 0), l0, 2, 100, V3::Zero());
+  const massspring::StepReport r = implicit_step_into_plane(s, 100);
+  CHECK(r.ok());
+  CHECK(std::abs(s.positions()(1, 1)) <= 1e-12);
+  CHECK(r.contact_work == doctest::Approx(implicit_work(l0)).epsilon(1e-6));
 }

@@ -22,8 +22,9 @@ namespace massspring::detail {
 /// 3. pinned points at their targets again (an impact zone may have moved one), and
 ///    report.contact_work, the energy E(x, v) (energy_bound.hpp) of the end state after the
 ///    response less before it;
-/// 4. when every value is finite, the contact was resolved and the end state's energy is within
-///    `bound` (energy_bound.hpp; else report.blew_up): the end state is written to the system and
+/// 4. when every value is finite, the contact was resolved, the end state's energy is within
+///    `bound` and the collision response added no more than the bound's contact limit
+///    (energy_bound.hpp; else report.blew_up): the end state is written to the system and
 ///    the colliders take their end-of-step pose; otherwise the system is left as it was. With
 ///    `swap_buffers`, x_end and v_end are swapped in (they hold the start state afterwards);
 ///    without, copied (the system's arrays keep their memory, which Python's views of them need).
@@ -66,8 +67,10 @@ void commit_step(System& system, typename System::PointsType& x_end,
   // overflow only when they are near 1e308, which is divergence anyway).
   report.finite = std::isfinite(x_end.sum() + v_end.sum());
   if (report.finite && report.contact_resolved)
-    report.blew_up = std::isnan(end_energy) ? bound.exceeded(system, x_end, v_end)
-                                            : bound.exceeded(system, end_energy);
+    report.blew_up = std::isnan(end_energy)
+                         ? bound.exceeded(system, x_end, v_end)
+                         : bound.exceeded(system, end_energy) ||
+                               bound.contact_exceeded(system, report.contact_work);
   if (report.finite && report.contact_resolved && !report.blew_up) {
     if (swap_buffers) {
       system.positions().swap(x_end);

@@ -60,6 +60,18 @@ double energy_scale(const System& system, double& energy) {
 /// conveyor) never trips it, while a blow-up, whose energy grows by a factor each step, does.
 /// `growth` 0 turns the check off, as does a scale that is not finite.
 ///
+/// The end-of-step collision response has a limit of its own (contact_exceeded()): the energy it
+/// adds to the end state, W = E(after) - E(before), blows the step up when
+///
+///     W > S / 10 + S_c.
+///
+/// Its impulses, projections and rigid zones are inelastic: they never add kinetic energy beyond
+/// what moving colliders give (S_c), and they change the potential only by stretching the springs
+/// around the points they move. S / 10 is the springs' energy with every spring 32% longer than
+/// at rest (S counts every spring at twice its rest length): a response that adds that much in
+/// one step has pushed points through the cloth's own springs, which feeds on itself over the
+/// next steps (docs/contact.md, Limits).
+///
 /// Cost of exceeded(): two passes over the springs and the terms' energies, one over the points.
 /// Allocates nothing.
 template <class System>
@@ -89,6 +101,23 @@ class EnergyBound {
     if (!(growth_ > 0)) return false;
     return !(end_energy <= limit(system));  // NaN included
   }
+
+  /// @brief True when a collision response that added `work` [J] to a step's end state added
+  /// more than contact_limit(system) (the class comment); false when the check is off.
+  [[nodiscard]] bool contact_exceeded(const System& system, double work) const {
+    if (!(growth_ > 0)) return false;
+    return !(work <= contact_limit(system));  // NaN included
+  }
+
+  /// @brief The most energy [J] the collision response may add to a step's end state:
+  /// S / 10 + S_c; +infinity when the check is off.
+  [[nodiscard]] double contact_limit(const System& system) const {
+    if (!(growth_ > 0)) return std::numeric_limits<double>::infinity();
+    return kContactShare * scale_ + collider_scale(system);
+  }
+
+  /// @brief The share of the energy scale S the collision response may add in one step.
+  static constexpr double kContactShare = 0.1;
 
   /// @brief The most energy [J] a step from the system's current state may end with:
   /// E(x0, v0) + growth (S + S_c); +infinity when the check is off.
