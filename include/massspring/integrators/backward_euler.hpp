@@ -163,6 +163,7 @@ class BackwardEuler {
     if (contact_) {
       system.colliders().begin_step(h);
       contact_weights(system);
+      edge_distance_ = detail::edge_distance(system);
     }
 
     x_ = x0 + h * v0;  // the inertial prediction: x + h v
@@ -360,8 +361,9 @@ class BackwardEuler {
       // The last iterate's z = target + u (x there when it touched nothing).
       const Scalar u_before[3] = {u[0], u[1], u[2]};
       const Scalar z_before[3] = {target[0] + u[0], target[1] + u[1], target[2] + u[2]};
-      const bool touches = detail::contact_dual_update(system.colliders(), x0 + 3 * i,
-                                                       x_.data() + 3 * i, u, dt_, target);
+      const bool touches =
+          detail::contact_dual_update(system.colliders(), x0 + 3 * i, x_.data() + 3 * i, u, dt_,
+                                      target, Scalar(0), edge_distance_);
       touches_[std::size_t(i)] = touches ? 1 : 0;
       for (int c = 0; c < 3; ++c) {
         residual = std::max(residual, std::abs(u[c] - u_before[c]));
@@ -431,6 +433,7 @@ class BackwardEuler {
   PointsType dual_, target_, start_, start_moved_, rhs_;
   Vector<Scalar> weight_, new_weight_;  // w_i this step [kg]; scratch
   std::vector<char> touches_;
+  Scalar edge_distance_ = 0;  // detail::edge_distance() at the step's start [m]
   Vector<Scalar> dx_;
   detail::JacobianAssembly<System> assembly_;
   detail::EnergyBound<System> energy_bound_;  // S taken at precompute()

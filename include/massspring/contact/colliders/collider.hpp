@@ -219,6 +219,20 @@ class Collider {
   /// position and thickness (ColliderSet adds the point's).
   [[nodiscard]] Scalar slop() const { return slop_; }
 
+  /// @brief Moves x (a point outside the solid, at the end of the step: the end pose) to
+  /// `distance` + thickness() [m] from the solid's nearest edge or corner when it is closer,
+  /// radially away from it; true when it moved x. Only a box has edges and corners here (the
+  /// other shapes return false). FastMassSpring and BackwardEuler call it inside their solves
+  /// (ColliderSet::project()), so that a cloth edge between two points that keep that distance
+  /// cannot cut the box's rim.
+  bool push_off_edges(V3& x, Scalar distance) const {
+    if (!geometry_ || !geometry_->push_off_edges) return false;
+    V3 p = end_rotation_.transpose() * (x - end_translation_);
+    if (!geometry_->push_off_edges(*this, p, distance + thickness_)) return false;
+    x = end_rotation_ * p + end_translation_;
+    return true;
+  }
+
   /// @brief Sets the pose the collider will have at the end of a step of dt [s] (its velocities
   /// applied); contact() uses it. Called by ColliderSet::begin_step().
   void begin_step(Scalar dt) {
@@ -308,6 +322,7 @@ class Collider {
     bool (*contact)(const Collider&, const V3& x_start, const V3& b, Scalar slop,
                     ColliderContact<Scalar>& c);
     Scalar (*bound)(const Collider&);
+    bool (*push_off_edges)(const Collider&, V3& p, Scalar distance);
   };
 
   Collider(ColliderShape shape, const V3& reference) : shape_(shape), translation_(reference) {

@@ -105,9 +105,13 @@ class ColliderSet {
   }
 
   /// @brief The position response of one point (3 coordinates each), x_end moved in place:
-  /// FastMassSpring's projection of an iterate. begin_step(dt) must have been called.
-  void project(const Scalar* x_start, Scalar* x_end, Scalar dt) const {
-    if (ops_) ops_->project(*this, x_start, x_end, dt);
+  /// FastMassSpring's projection of an iterate. With `edge_distance` > 0 [m] the point is then
+  /// also kept that far (plus the collider's thickness) from each box's edges and corners
+  /// (Collider::push_off_edges(); the solves' contact term passes the distance
+  /// detail::edge_distance() gives, so that the cloth's edges cannot cut a box's rim).
+  /// begin_step(dt) must have been called.
+  void project(const Scalar* x_start, Scalar* x_end, Scalar dt, Scalar edge_distance = 0) const {
+    if (ops_) ops_->project(*this, x_start, x_end, dt, edge_distance);
   }
 
   /// @brief The contact tolerance at a point x [m]: a point within a few rounding units of a
@@ -117,16 +121,18 @@ class ColliderSet {
     return 16 * std::numeric_limits<Scalar>::epsilon() * (1 + x.cwiseAbs().maxCoeff());
   }
 
-  /// @brief False when the path x_start -> x_end is far from every collider (Collider::far()).
+  /// @brief False when the path x_start -> x_end is far from every collider (Collider::far(),
+  /// its margin grown by `margin` [m]).
   template <class A, class B>
-  [[nodiscard]] bool near(const A& x_start, const B& x_end) const {
+  [[nodiscard]] bool near(const A& x_start, const B& x_end, Scalar margin = 0) const {
     for (const auto& c : colliders_)
-      if (!c.far(x_start, x_end, Scalar(0))) return true;
+      if (!c.far(x_start, x_end, margin)) return true;
     return false;
   }
 
   /// @brief The least Collider::clearance() of x_start [m] (+infinity without colliders): for
-  /// every x_end with |x_end - x_start| below it, project() leaves x_end as it is. For a caller
+  /// every x_end with |x_end - x_start| below it, project() without an edge distance leaves
+  /// x_end as it is (with one, below it less the distance). For a caller
   /// that projects many ends of one start (FastMassSpring's iterations); begin_step(dt) must have
   /// been called.
   [[nodiscard]] Scalar clearance(const V3& x_start) const {
@@ -140,7 +146,7 @@ class ColliderSet {
   // add() names them, so that only a program that adds a collider instantiates them.
   struct Ops {
     void (*respond)(ColliderSet&, const CollisionStep<Scalar>&, bool);
-    void (*project)(const ColliderSet&, const Scalar*, Scalar*, Scalar);
+    void (*project)(const ColliderSet&, const Scalar*, Scalar*, Scalar, Scalar);
     void (*begin_step)(ColliderSet&, Scalar);
     void (*end_step)(ColliderSet&);
     void (*undo_step)(ColliderSet&);
@@ -157,8 +163,9 @@ class ColliderSet {
   static void respond_all(ColliderSet& set, const CollisionStep<Scalar>& step, bool friction) {
     set.respond_impl(step, friction);
   }
-  static void project_one(const ColliderSet& set, const Scalar* x_start, Scalar* x_end, Scalar dt) {
-    set.project_impl(x_start, x_end, dt);
+  static void project_one(const ColliderSet& set, const Scalar* x_start, Scalar* x_end, Scalar dt,
+                          Scalar edge_distance) {
+    set.project_impl(x_start, x_end, dt, edge_distance);
   }
 
   void respond_impl(const CollisionStep<Scalar>& step, bool friction) {
@@ -176,12 +183,15 @@ class ColliderSet {
     }
   }
 
-  void project_impl(const Scalar* x_start, Scalar* x_end, Scalar dt) const {
+  void project_impl(const Scalar* x_start, Scalar* x_end, Scalar dt, Scalar edge_distance) const {
     const Eigen::Map<const V3> xs(x_start);
     const Eigen::Map<const V3> xe(x_end);
-    if (!near(xs, xe)) return;  // most points: a few flops each
+    if (!near(xs, xe, edge_distance)) return;  // most points: a few flops each
     V3 moved = xe;
-    if (push(xs, moved, nullptr, dt, 0, nullptr, true))
+    bool any = push(xs, moved, nullptr, dt, 0, nullptr, true);
+    if (edge_distance > 0)
+      for (const auto& c : colliders_) any = c.push_off_edges(moved, edge_distance) || any;
+    if (any)
       for (int c = 0; c < 3; ++c) x_end[c] = moved(c);
   }
 

@@ -27,7 +27,7 @@ struct MeshShape {
   /// @brief Collider::mesh(): the mesh's frame centred on its bounding box.
   static Collider<Scalar> make(Points<Scalar> vertices, Triangles triangles) {
     static constexpr typename Collider<Scalar>::Geometry kGeometry{nullptr, &MeshShape::contact,
-                                                                   &MeshShape::bound};
+                                                                   &MeshShape::bound, nullptr};
     if (vertices.rows() > 0 && vertices.allFinite()) {
       const V3 center =
           (vertices.colwise().minCoeff() + vertices.colwise().maxCoeff()).transpose() / 2;

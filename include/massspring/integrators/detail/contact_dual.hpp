@@ -6,6 +6,7 @@
 /// contact_dual_update(), one point's local step.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 
 #include "massspring/contact/colliders/collider_set.hpp"
@@ -33,21 +34,50 @@ void contact_weights(const System& system, Scalar alpha, Scalar h2, Vector<Scala
   }
 }
 
+/// @brief The distance [m] the solves' contact term keeps points from a box's edges and corners:
+/// rho = L / sqrt(2), L the longest edge of the system's surface at its current positions; 0
+/// without a surface or without a box. Two points outside a box, each at least rho from its
+/// edges, are at least sqrt(2) rho = L apart when the segment between them meets the box (the
+/// shortest such segment joins two points on the two faces of an edge, rho from it), so no
+/// surface edge cuts the box, and no box edge pierces a surface triangle (tests/contact/
+/// colliders/test_box_shape.cpp samples both). The end-of-step surface pass
+/// (contact/response/surface_contact.hpp), which tests the cloth's edges against the box's, then
+/// finds nothing to push at the rim at the step's end. Allocates nothing.
+template <class System>
+typename System::Scalar edge_distance(const System& system) {
+  using Scalar = typename System::Scalar;
+  const auto& triangles = system.surface();
+  if (triangles.rows() == 0) return 0;
+  bool box = false;
+  for (const auto& c : system.colliders()) box = box || c.shape() == contact::ColliderShape::Box;
+  if (!box) return 0;
+  const auto& x = system.positions();
+  Scalar longest2 = 0;
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int k = 0; k < 3; ++k)
+      longest2 = std::max(
+          longest2,
+          Scalar((x.row(triangles(t, k)) - x.row(triangles(t, (k + 1) % 3))).squaredNorm()));
+  return std::sqrt(longest2 / 2);
+}
+
 /// @brief At the iterate x of one point (3 coordinates [m]), with its scaled dual variable u [m]
 /// and its start-of-step position x_start: z = P(x + u), P the colliders' position response
 /// (ColliderSet::project; begin_step(dt) called), then u <- x + u - z. Writes the point the term
 /// pulls x towards, target = z - u, and returns true when the point touches a collider; otherwise
 /// (P moved nothing) u = 0, target = x, and returns false. `clearance2` [m^2]: the square of
-/// ColliderSet::clearance(x_start) when positive, else 0; a z closer than that to x_start is
-/// not projected (P would not move it).
+/// ColliderSet::clearance(x_start) less `edge_distance` when positive, else 0; a z closer than
+/// that to x_start is not projected (P would not move it). `edge_distance` [m]: P also keeps
+/// the point that far from each box's edges and corners (edge_distance() below).
 template <class Scalar>
 bool contact_dual_update(const contact::ColliderSet<Scalar>& colliders, const Scalar* x_start,
                          const Scalar* x, Scalar* u, Scalar dt, Scalar* target,
-                         Scalar clearance2 = 0) {
+                         Scalar clearance2 = 0, Scalar edge_distance = 0) {
   Scalar z[3] = {x[0] + u[0], x[1] + u[1], x[2] + u[2]};
   const Scalar moved[3] = {z[0], z[1], z[2]};
   const Scalar d[3] = {z[0] - x_start[0], z[1] - x_start[1], z[2] - x_start[2]};
-  if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < clearance2)) colliders.project(x_start, z, dt);
+  if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < clearance2))
+    colliders.project(x_start, z, dt, edge_distance);
   if (z[0] == moved[0] && z[1] == moved[1] && z[2] == moved[2]) {
     for (int c = 0; c < 3; ++c) {
       u[c] = 0;

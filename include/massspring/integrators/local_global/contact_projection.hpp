@@ -15,6 +15,8 @@
 /// displacement over the step) and u_i the dual variable [m] (kept from the previous step, 0 after
 /// a factorization):
 ///   z_i = P(x_i + u_i),   u_i <- x_i + u_i - z_i,   right-hand side += w_i (z_i - u_i).
+/// P also keeps points detail::edge_distance() from each box's edges and corners, so that the
+/// iterate has no cloth edge across a box's rim for the end-of-step pass to push off.
 /// A point that touches nothing has z_i = x_i and u_i = 0: the term is w_i x_i, a proximal term
 /// that vanishes at convergence. A point in contact converges to x_i = z_i on the surface with
 /// the contact force -w_i u_i [N]: its normal part w_i delta >= 0 (delta the depth of x_i + u_i)
@@ -79,10 +81,12 @@ class ContactProjection {
     origin_ = origin.data();
     dt_ = dt;
     base_ = rhs0.head(base_.size());  // same size: no allocation
+    edge_distance_ = detail::edge_distance(system);
     for (int r = 0; r < int(weight_.size()); ++r) {
       const Scalar c = projects_[std::size_t(r)]
                            ? colliders_->clearance(Eigen::Map<const Vector3<Scalar>>(
-                                 x_start_ + 3 * point_[std::size_t(r)]))
+                                 x_start_ + 3 * point_[std::size_t(r)])) -
+                                 edge_distance_
                            : Scalar(0);
       clearance2_(r) = c > 0 ? c * c : Scalar(0);
     }
@@ -144,7 +148,7 @@ class ContactProjection {
       Scalar target[3];
       const bool touches =
           detail::contact_dual_update(*colliders_, x_start_ + 3 * point_[std::size_t(r)], xr,
-                                      dual + 3 * r, dt_, target, clearance2_(r));
+                                      dual + 3 * r, dt_, target, clearance2_(r), edge_distance_);
       for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (target[c] - o[c]);
       if (Energy && touches) {
         Scalar p[3] = {xr[0], xr[1], xr[2]};
@@ -172,7 +176,7 @@ class ContactProjection {
     const Scalar* xs = x_start_ + 3 * point_[std::size_t(r)];
     const Scalar d0 = x0 - xs[0], d1 = x1 - xs[1], d2 = x2 - xs[2];
     if (d0 * d0 + d1 * d1 + d2 * d2 < clearance2_(r)) return 0;  // P moves nothing
-    colliders_->project(xs, xr, dt_);
+    colliders_->project(xs, xr, dt_, edge_distance_);
     const Scalar p0 = xr[0] - x0, p1 = xr[1] - x1, p2 = xr[2] - x2;
     return double(weight_(r) / 2 * (p0 * p0 + p1 * p1 + p2 * p2));
   }
@@ -190,6 +194,7 @@ class ContactProjection {
   const Scalar* x_start_ = nullptr;
   const Scalar* origin_ = nullptr;  // 3 per row [m]
   Scalar dt_ = 0;
+  Scalar edge_distance_ = 0;  // detail::edge_distance() at the step's start [m]
   bool active_ = false;
 };
 
