@@ -65,7 +65,7 @@ void bind_step_report(py::module_& m) {
       .def_readonly(
           "blew_up", &StepReport::blew_up,
           "True when the end state's energy passed the integrator's bound (energy_growth) "
-          "or a DivergenceGuard's, or the contact response added more than S / 10 + S_c "
+          "or a DivergenceGuard's, or the contact response added more than S / 2 + S_c "
           "(contact_work): nothing changed.")
       .def_readonly("contact_impulses", &StepReport::contact_impulses,
                     "Surface contact's repulsion and collision impulses in this step.")
@@ -77,7 +77,7 @@ void bind_step_report(py::module_& m) {
           "contact_work", &StepReport::contact_work,
           "Energy [J] the end-of-step contact response added to the end state (kinetic "
           "of the free points plus potential, after less before); 0 without contact. Above "
-          "S / 10 + S_c the step is refused (blew_up).")
+          "S / 2 + S_c the step is refused (blew_up).")
       .def("ok", &StepReport::ok,
            "finite, not blown up, the factorization succeeded and the contact was resolved")
       .def("__repr__", [](const StepReport& r) {

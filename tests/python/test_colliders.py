@@ -90,3 +90,29 @@ def test_a_step_reports_the_energy_its_contact_added():
         report = solver.step(s)
         assert report.ok()
         assert report.contact_work == pytest.approx(expected, abs=1e-12)
+
+
+def test_a_contact_response_that_adds_more_than_half_the_scale_is_refused():
+    """A point at rest at y = 0.1 on a spring at rest (k = 10^4 N/m, l0 = 0.1 m) from a pin at
+    y = 0.2 (1 kg each), and the plane y = 0 rising at 0.19 m/s: one backward Euler step of 1 s
+    (the contact term off) leaves everything at rest; the plane's response puts the point at
+    y = 0.19 moving at 0.19 m/s, the spring 1 cm long: it adds 40.5 J, more than S / 2 + S_c =
+    25 + 0.14 J (S = k l0^2 / 2 at rest, S_c = 2 M V^2), so the step is refused (blew_up) and
+    the state kept; with the energy bound off (energy_growth 0) it is committed."""
+    for growth, refused in ((100.0, True), (0.0, False)):
+        s = ms.MassSpringSystem([[0.0, 0.2, 0], [0.0, 0.1, 0]], [[0, 1]], 1.0, 1e4)
+        s.pin(0)
+        s.add_collider(ms.Collider.plane([0, 0, 0], [0, 1, 0]).set_velocity([0, 0.19, 0]))
+        before = s.positions.copy()
+        solver = ms.BackwardEuler()
+        solver.options.contact_weight = 0.0
+        solver.options.energy_growth = growth
+        solver.precompute(s, 1.0)
+        report = solver.step(s)
+        work = 0.5 * 1e4 * 0.09 ** 2 + 0.5 * 0.19 ** 2
+        assert report.contact_work == pytest.approx(work, rel=1e-9)
+        assert report.blew_up == refused and report.ok() != refused
+        if refused:
+            assert np.array_equal(s.positions, before)
+        else:
+            assert s.positions[1, 1] == pytest.approx(0.19, rel=1e-12)

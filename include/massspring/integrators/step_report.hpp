@@ -50,7 +50,7 @@ struct StepReport {
   bool factorization_failed = false;
   /// @brief True when the step's end state had more energy than the integrator's bound,
   /// the start energy + energy_growth (S + S_c) (integrators/detail/energy_bound.hpp: an energy
-  /// blow-up), or its collision response added more than S / 10 + S_c (`contact_work`: a
+  /// blow-up), or its collision response added more than S / 2 + S_c (`contact_work`: a
   /// response that pumps energy into the springs; on whenever energy_growth > 0), or a
   /// DivergenceGuard found the total energy after the step beyond its limit. Nothing was
   /// changed (the guard restores the state from before the step).
@@ -68,7 +68,7 @@ struct StepReport {
   /// the springs and force terms (integrators/detail/energy_bound.hpp). An inelastic response
   /// that only stops approaching points gives about 0 or less; a large positive value means its
   /// position corrections stretched springs (docs/contact.md, Limits) and the step's result is
-  /// suspect even when ok(); above S / 10 + S_c the step is refused (`blew_up`). 0 when the system
+  /// suspect even when ok(); above S / 2 + S_c the step is refused (`blew_up`). 0 when the system
   /// has no collision response; NaN only when the end
   /// state is not finite (then `finite` is false).
   double contact_work = 0;

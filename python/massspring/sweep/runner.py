@@ -318,10 +318,10 @@ def run(parameters, bundle=None):
                         f"({guard.limit:.6g} J: the initial energy + {growth:g} x the scale "
                         f"{guard.scale:.6g} J), or the step gained more than {growth:g} x the "
                         "scale, the integrator's own bound; stopped with the last good state")
-                    if report.contact_work > 0.1 * guard.scale:
+                    if report.contact_work > 0.5 * guard.scale:
                         result["message"] += (
                             f"; in that step the contact response added "
-                            f"{report.contact_work:.6g} J, more than a tenth of the scale "
+                            f"{report.contact_work:.6g} J, more than half the scale "
                             "(StepReport.contact_work)")
                 elif not report.contact_resolved:
                     result["message"] = (f"step {step}: surface contact left a crossing its "

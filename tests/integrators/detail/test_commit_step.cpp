@@ -5,8 +5,8 @@
 // the response computed here by hand: a point that only stops loses its kinetic energy; a point
 // that a spring pulls into the plane is pushed back against the spring, which gains more
 // potential energy than the point loses kinetic energy. And the energy bound's contact limit
-// (energy_bound.hpp): a response that adds more than S / 10 (no moving collider) refuses the
-// step, S computed here by hand from the start state.
+// (energy_bound.hpp): a response that adds more than S / 2 + S_c refuses the step (a rising
+// plane pressing a point against a spring), S and S_c computed here by hand from the start state.
 #include <doctest/doctest.h>
 
 #include <Eigen/Core>
@@ -39,34 +39,35 @@ System over_plane(const V3& anchor, double l0, double m, double k, const V3& v0,
 
 double spring_energy(double k, double l, double l0) { return 0.5 * k * (l - l0) * (l - l0); }
 
-// One backward Euler step (Newton, exact here: the spring stays vertical, so the force is linear
-// in y) of over_plane(anchor (0, -1, 0), l0, m = 2, k = 100, at rest) at h = 1 s, the contact
-// term off so that only the end-of-step response sees the plane; `growth` the energy bound.
-massspring::StepReport implicit_step_into_plane(System& s, double growth) {
+// A point at rest at y = 0.1 on a spring at rest (k = 10^4 N/m, l0 = 0.1 m) from a pin at
+// y = 0.2, each of mass 1 kg, no force; the plane y = 0 rises at V m/s. One backward Euler step
+// of 1 s, the contact term off (so that only the end-of-step response sees the plane), with
+// the energy bound at `growth`: the solve leaves everything at rest (E = 0), and the plane's
+// response puts the point on the plane at y = V, moving at V, the spring V - 0.1 shorter.
+System under_rising_plane(double V) {
+  massspring::Points<double> x(2, 3);
+  x << 0, 0.2, 0, 0, 0.1, 0;
+  massspring::Edges springs(1, 2);
+  springs << 0, 1;
+  System s(x, springs, 1.0, 1e4);
+  s.pin(0);
+  s.add_collider(massspring::contact::Collider<double>::plane(V3::Zero(), V3(0, 1, 0))
+                     .set_velocity(V3(0, V, 0)));
+  return s;
+}
+massspring::StepReport step_under_rising_plane(System& s, double growth) {
   massspring::BackwardEuler<System> solver;
   solver.options.contact_weight = 0;
   solver.options.energy_growth = growth;
   solver.precompute(s, 1.0);
   return solver.step(s);
 }
-
-// The closed forms of the implicit step above from y = 0.05: m (y - 0.05) / h^2 = -k (y + 1 - l0)
-// gives y = (m 0.05 - k (1 - l0)) / (m + k) and v = y - 0.05; the response then puts the point on
-// the plane at rest, the spring 1 m long. Returns the response's work E(after) - E(proposed).
-double implicit_work(double l0) {
-  const double m = 2, k = 100;
-  const double y = (m * 0.05 - k * (1 - l0)) / (m + k), v = y - 0.05;
-  const double proposed = spring_energy(k, y + 1, l0) + 0.5 * m * v * v;
-  return spring_energy(k, 1.0, l0) - proposed;
-}
-
-// The bound's contact limit S / 10 (energy_bound.hpp; no moving collider, so S_c = 0) for the
-// start state: S = |E| + K + k l0^2 / 2 + D sum_i |F_i|, E = k (1.05 - l0)^2 / 2, K = 0, D = 1.05
-// (the points' box), the spring's force k (1.05 - l0) on each of the two points.
-double contact_limit(double l0) {
-  const double k = 100, stretch = 1.05 - l0;
-  return 0.1 * (0.5 * k * stretch * stretch + 0.5 * k * l0 * l0 + 1.05 * 2 * k * stretch);
-}
+// The response's work in closed form: the spring's energy at length 0.2 - V plus the point's
+// kinetic energy, m V^2 / 2 (E before it: 0).
+double rising_plane_work(double V) { return spring_energy(1e4, 0.2 - V, 0.1) + 0.5 * V * V; }
+// The contact limit S / 2 + S_c (energy_bound.hpp) of the start state: S = k l0^2 / 2 (at rest,
+// no force: E = K = 0), S_c = 2 M V^2 with M = 2 kg.
+double rising_plane_limit(double V) { return 0.5 * (0.5 * 1e4 * 0.01) + 2 * 2 * V * V; }
 
 }  // namespace commit_step_test
 
@@ -113,38 +114,36 @@ TEST_CASE("contact_work: 0 without a collision response") {
   CHECK(r.contact_work == 0);
 }
 
-TEST_CASE("contact_work above S / 10: the step is refused as a blow-up, the state kept") {
-  // l0 = 0.05: the implicit step relaxes the spring to y = -0.930 (E 0.98 J); the plane puts the
-  // point back at y = 0, where the spring holds 45.1 J: work 44.1 J > S / 10 = 26.0 J.
-  const double l0 = 0.05;
-  REQUIRE(implicit_work(l0) > contact_limit(l0) * 1.5);
-  System s = over_plane(V3(0, -1, 0), l0, 2, 100, V3::Zero());
+TEST_CASE("contact_work above S / 2 + S_c: the step is refused as a blow-up, the state kept") {
+  // V = 0.19 m/s: the spring is pressed to 1 cm, 40.5 J, against a limit of 25.1 J.
+  const double V = 0.19;
+  REQUIRE(rising_plane_work(V) > 1.5 * rising_plane_limit(V));
+  System s = under_rising_plane(V);
   const massspring::Points<double> before = s.positions();
-  const massspring::StepReport r = implicit_step_into_plane(s, 100);
+  const massspring::StepReport r = step_under_rising_plane(s, 100);
   CHECK(r.blew_up);
   CHECK_FALSE(r.ok());
   CHECK(r.finite);
   CHECK(r.contact_resolved);
-  CHECK(r.contact_work == doctest::Approx(implicit_work(l0)).epsilon(1e-6));
+  CHECK(r.contact_work == doctest::Approx(rising_plane_work(V)).epsilon(1e-9));
   CHECK(s.positions() == before);
   CHECK(s.velocities().isZero(0));
 
   // With the energy bound off (growth 0) the same step is committed.
-  System off = over_plane(V3(0, -1, 0), l0, 2, 100, V3::Zero());
-  const massspring::StepReport r0 = implicit_step_into_plane(off, 0);
+  System off = under_rising_plane(V);
+  const massspring::StepReport r0 = step_under_rising_plane(off, 0);
   CHECK(r0.ok());
-  CHECK(std::abs(off.positions()(1, 1)) <= 1e-12);
-  CHECK(r0.contact_work == doctest::Approx(implicit_work(l0)).epsilon(1e-6));
+  CHECK(off.positions()(1, 1) == doctest::Approx(V).epsilon(1e-12));
+  CHECK(r0.contact_work == doctest::Approx(rising_plane_work(V)).epsilon(1e-9));
 }
 
-TEST_CASE("contact_work below S / 10: the step is committed") {
-  // l0 = 0.5: work 12.2 J against S / 10 = 14.3 J.
-  const double l0 = 0.5;
-  REQUIRE(implicit_work(l0) < contact_limit(l0) * 0.9);
-  REQUIRE(implicit_work(l0) > contact_limit(l0) * 0.5);
-  System s = over_plane(V3(0, -1, 0), l0, 2, 100, V3::Zero());
-  const massspring::StepReport r = implicit_step_into_plane(s, 100);
+TEST_CASE("contact_work below S / 2 + S_c: the step is committed") {
+  // V = 0.16 m/s: 18 J against a limit of 25.1 J.
+  const double V = 0.16;
+  REQUIRE(rising_plane_work(V) < 0.8 * rising_plane_limit(V));
+  System s = under_rising_plane(V);
+  const massspring::StepReport r = step_under_rising_plane(s, 100);
   CHECK(r.ok());
-  CHECK(std::abs(s.positions()(1, 1)) <= 1e-12);
-  CHECK(r.contact_work == doctest::Approx(implicit_work(l0)).epsilon(1e-6));
+  CHECK(s.positions()(1, 1) == doctest::Approx(V).epsilon(1e-12));
+  CHECK(r.contact_work == doctest::Approx(rising_plane_work(V)).epsilon(1e-9));
 }

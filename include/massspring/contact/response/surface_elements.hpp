@@ -259,8 +259,19 @@ struct SurfaceElements {
       case ColliderShape::Mesh: {
         const auto& mesh = *c.triangle_mesh();
         const int m = int(mesh.vertices().rows());
-        for (int k = 0; k < m; ++k) point(next + k, mesh.vertices().row(k).transpose());
         const Triangles& f = mesh.triangles();
+        // Every vertex is placed (the indices stay the mesh's); only those of a triangle are
+        // points of the surface (a state scene's mesh carries two unused corners that keep its
+        // frame).
+        used_vertex.assign(std::size_t(m), 0);
+        for (Eigen::Index t = 0; t < f.rows(); ++t)
+          for (int k = 0; k < 3; ++k) used_vertex[std::size_t(f(t, k))] = 1;
+        for (int k = 0; k < m; ++k) {
+          if (used_vertex[std::size_t(k)])
+            point(next + k, mesh.vertices().row(k).transpose());
+          else
+            place(next + k, mesh.vertices().row(k).transpose());
+        }
         for (Eigen::Index t = 0; t < f.rows(); ++t)
           triangles.push_back({{next + f(t, 0), next + f(t, 1), next + f(t, 2)}, ci});
         massspring::detail::triangle_edges(f, mesh_edges);
@@ -380,6 +391,7 @@ struct SurfaceElements {
   std::vector<Scalar> gap;  // per collider [m]
   std::vector<Element> points, edges, triangles;
   std::vector<std::pair<int, int>> mesh_edges;  // scratch of add_obstacle()
+  std::vector<char> used_vertex;                // scratch of add_obstacle(): in a triangle
   std::uint64_t layout = 0;  // the lists' value (see the file comment); 0: never set up
   // What the lists were last built from: the cloth's part and the obstacles'.
   int cloth_n = -1;

@@ -63,13 +63,13 @@ double energy_scale(const System& system, double& energy) {
 /// The end-of-step collision response has a limit of its own (contact_exceeded()): the energy it
 /// adds to the end state, W = E(after) - E(before), blows the step up when
 ///
-///     W > S / 10 + S_c.
+///     W > S / 2 + S_c.
 ///
 /// Its impulses, projections and rigid zones are inelastic: they never add kinetic energy beyond
 /// what moving colliders give (S_c), and they change the potential only by stretching the springs
-/// around the points they move. S / 10 is the springs' energy with every spring 32% longer than
-/// at rest (S counts every spring at twice its rest length): a response that adds that much in
-/// one step has pushed points through the cloth's own springs, which feeds on itself over the
+/// around the points they move. S / 2 is the springs' energy with every spring 71% longer than at
+/// rest (S counts every spring at twice its rest length): a response that adds that much in one
+/// step has pushed points through the cloth's own springs, which feeds on itself over the
 /// next steps (docs/contact.md, Limits).
 ///
 /// Cost of exceeded(): two passes over the springs and the terms' energies, one over the points.
@@ -110,14 +110,14 @@ class EnergyBound {
   }
 
   /// @brief The most energy [J] the collision response may add to a step's end state:
-  /// S / 10 + S_c; +infinity when the check is off.
+  /// S / 2 + S_c; +infinity when the check is off.
   [[nodiscard]] double contact_limit(const System& system) const {
     if (!(growth_ > 0)) return std::numeric_limits<double>::infinity();
     return kContactShare * scale_ + collider_scale(system);
   }
 
   /// @brief The share of the energy scale S the collision response may add in one step.
-  static constexpr double kContactShare = 0.1;
+  static constexpr double kContactShare = 0.5;
 
   /// @brief The most energy [J] a step from the system's current state may end with:
   /// E(x0, v0) + growth (S + S_c); +infinity when the check is off.
