@@ -48,6 +48,9 @@ void bind_step_report(py::module_& m) {
       .value("NotTested", Convergence::NotTested)
       .value("Converged", Convergence::Converged)
       .value("NotConverged", Convergence::NotConverged);
+  // The share of the energy scale the collision response may add in one step before the step is
+  // refused (integrators/detail/energy_bound.hpp), for messages that name that refusal.
+  m.attr("CONTACT_LIMIT_SHARE") = detail::EnergyBound<System>::kContactShare;
   py::class_<StepReport>(m, "StepReport", "What one step did (integrators/step_report.hpp).")
       .def(py::init<>())
       .def_readonly("iterations", &StepReport::iterations, "Iterations (local-global or Newton).")

@@ -110,6 +110,7 @@ def test_a_contact_response_that_adds_more_than_half_the_scale_is_refused():
         solver.precompute(s, 1.0)
         report = solver.step(s)
         work = 0.5 * 1e4 * 0.09 ** 2 + 0.5 * 0.19 ** 2
+        assert work > ms.CONTACT_LIMIT_SHARE * 0.5 * 1e4 * 0.1 ** 2 + 2 * 2 * 0.19 ** 2
         assert report.contact_work == pytest.approx(work, rel=1e-9)
         assert report.blew_up == refused and report.ok() != refused
         if refused:

@@ -318,7 +318,7 @@ def run(parameters, bundle=None):
                         f"({guard.limit:.6g} J: the initial energy + {growth:g} x the scale "
                         f"{guard.scale:.6g} J), or the step gained more than {growth:g} x the "
                         "scale, the integrator's own bound; stopped with the last good state")
-                    if report.contact_work > 0.5 * guard.scale:
+                    if report.contact_work > ms.CONTACT_LIMIT_SHARE * guard.scale:
                         result["message"] += (
                             f"; in that step the contact response added "
                             f"{report.contact_work:.6g} J, more than half the scale "

@@ -1,9 +1,9 @@
 // contact/colliders/box_shape.hpp: Collider::push_off_edges() of a box, in closed form, and the
 // guarantee detail::edge_distance() relies on, checked apart from the code: for points outside a
 // box and at least rho = L / sqrt(2) from its edges and corners (a brute-force distance to the
-// twelve edges written here), no segment of length <= L crosses the box (a slab test) and no
-// triangle with edges <= L is pierced by a box edge (a segment-triangle test); with a smaller
-// rho the same sampling finds both, so the check is not vacuous.
+// twelve edges; tests/support/box_checks.hpp), no segment of length <= L crosses the box (a slab
+// test) and no triangle with edges <= L is pierced by a box edge (a segment-triangle test); with a
+// smaller rho the same sampling finds both, so the check is not vacuous.
 #include <doctest/doctest.h>
 
 #include <Eigen/Core>
@@ -13,6 +13,8 @@
 #include <massspring/contact/colliders/box_shape.hpp>
 #include <massspring/contact/colliders/collider.hpp>
 #include <random>
+
+#include "support/box_checks.hpp"
 
 namespace box_shape_test {
 
@@ -25,41 +27,15 @@ const V3 kHalf(1.0, 0.5, 2.0);
 // the edges as segments.
 double distance_to_edges(const V3& p, const V3& h) {
   double best = 1e300;
-  for (int a = 0; a < 3; ++a)
-    for (int sb = -1; sb <= 1; sb += 2)
-      for (int sc = -1; sc <= 1; sc += 2) {
-        const int b = (a + 1) % 3, c = (a + 2) % 3;
-        V3 e0, e1;
-        e0(a) = -h(a);
-        e1(a) = h(a);
-        e0(b) = e1(b) = sb * h(b);
-        e0(c) = e1(c) = sc * h(c);
-        const V3 d = e1 - e0;
-        const double t = std::clamp((p - e0).dot(d) / d.squaredNorm(), 0.0, 1.0);
-        best = std::min(best, (p - (e0 + t * d)).norm());
-      }
+  for (const auto& [e0, e1] : massspring::test::box_edges(h)) {
+    const V3 d = e1 - e0;
+    const double t = std::clamp((p - e0).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (p - (e0 + t * d)).norm());
+  }
   return best;
 }
 
 bool inside_closed_box(const V3& p, const V3& h) { return (p.cwiseAbs() - h).maxCoeff() <= 0; }
-
-// Whether the segment a-b meets the closed box [-h, h] (slab test).
-bool segment_meets_box(const V3& a, const V3& b, const V3& h) {
-  double t0 = 0, t1 = 1;
-  const V3 d = b - a;
-  for (int k = 0; k < 3; ++k) {
-    if (std::abs(d(k)) < 1e-300) {
-      if (std::abs(a(k)) > h(k)) return false;
-      continue;
-    }
-    double lo = (-h(k) - a(k)) / d(k), hi = (h(k) - a(k)) / d(k);
-    if (lo > hi) std::swap(lo, hi);
-    t0 = std::max(t0, lo);
-    t1 = std::min(t1, hi);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
 
 // Whether the segment p-q crosses the triangle (a, b, c) (Moller and Trumbore 1997).
 bool segment_crosses_triangle(const V3& p, const V3& q, const V3& a, const V3& b, const V3& c) {
@@ -72,24 +48,6 @@ bool segment_crosses_triangle(const V3& p, const V3& q, const V3& a, const V3& b
   const V3 r = w.cross(e1);
   const double v = d.dot(r) / det, t = e2.dot(r) / det;
   return v >= 0 && u + v <= 1 && t >= 0 && t <= 1;
-}
-
-// The box's twelve edges as segments.
-std::array<std::array<V3, 2>, 12> box_edges(const V3& h) {
-  std::array<std::array<V3, 2>, 12> edges;
-  int n = 0;
-  for (int a = 0; a < 3; ++a)
-    for (int sb = -1; sb <= 1; sb += 2)
-      for (int sc = -1; sc <= 1; sc += 2) {
-        const int b = (a + 1) % 3, c = (a + 2) % 3;
-        V3 e0, e1;
-        e0(a) = -h(a);
-        e1(a) = h(a);
-        e0(b) = e1(b) = sb * h(b);
-        e0(c) = e1(c) = sc * h(c);
-        edges[std::size_t(n++)] = {e0, e1};
-      }
-  return edges;
 }
 
 // Samples segments (and triangles) of edges <= L near the corner (h) and the edge through it
@@ -110,7 +68,7 @@ Sampled sample(double L, double rho, int tries) {
     while (d.squaredNorm() > 1 || d.squaredNorm() < 1e-6);
     return V3(d.normalized());
   };
-  const auto edges = box_edges(kHalf);
+  const auto edges = massspring::test::box_edges(kHalf);
   Sampled s;
   for (int k = 0; k < tries; ++k) {
     // Around the corner, or along the edge through it.
@@ -120,7 +78,7 @@ Sampled sample(double L, double rho, int tries) {
     const V3 b = a + random_direction() * (L * (0.5 + 0.5 * std::abs(unit(rng))));
     if (!ok(b)) continue;
     ++s.segments;
-    s.segments_crossing += segment_meets_box(a, b, kHalf);
+    s.segments_crossing += massspring::test::segment_meets_box(a, b, V3::Zero(), kHalf);
     const V3 c = a + random_direction() * (L * std::abs(unit(rng)));
     if (!ok(c) || (c - b).norm() > L) continue;
     ++s.triangles;

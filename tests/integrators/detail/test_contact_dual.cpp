@@ -15,6 +15,8 @@
 #include <massspring/scene/contact_recipes.hpp>
 #include <massspring/scene/make_system.hpp>
 
+#include "support/box_checks.hpp"
+
 namespace contact_dual_test {
 
 using System = massspring::MassSpringSystem<double, massspring::Sparse>;
@@ -28,26 +30,6 @@ massspring::ColliderDescription<double> box(const V3& c, const V3& h) {
   b.half_extents = h;
   b.static_friction = b.kinetic_friction = 0.3;
   return b;
-}
-
-// Whether the segment a-b meets the closed box centred at c with half extents h (slab test).
-bool segment_meets_box(V3 a, V3 b, const V3& c, const V3& h) {
-  a -= c;
-  b -= c;
-  double t0 = 0, t1 = 1;
-  const V3 d = b - a;
-  for (int k = 0; k < 3; ++k) {
-    if (d(k) == 0) {
-      if (std::abs(a(k)) > h(k)) return false;
-      continue;
-    }
-    double lo = (-h(k) - a(k)) / d(k), hi = (h(k) - a(k)) / d(k);
-    if (lo > hi) std::swap(lo, hi);
-    t0 = std::max(t0, lo);
-    t1 = std::min(t1, hi);
-    if (t0 > t1) return false;
-  }
-  return true;
 }
 
 }  // namespace contact_dual_test
@@ -95,8 +77,9 @@ TEST_CASE("a cloth dropped on a table: no link past 15%, no cloth edge through t
   const massspring::Triangles& t = s.surface();
   for (Eigen::Index f = 0; f < t.rows(); ++f)
     for (int k = 0; k < 3; ++k)
-      through += segment_meets_box(s.positions().row(t(f, k)).transpose(),
-                                   s.positions().row(t(f, (k + 1) % 3)).transpose(), centre, half);
+      through += massspring::test::segment_meets_box(
+          s.positions().row(t(f, k)).transpose(), s.positions().row(t(f, (k + 1) % 3)).transpose(),
+          centre, half);
   CHECK(through == 0);
   // The cloth lies on the table: its middle point over the top (0.75 m), by no more than the
   // edge distance the rim holds it at (4 cm: the 5.66 cm diagonals over sqrt(2)).
