@@ -35,6 +35,12 @@ double distance_to_edges(const V3& p, const V3& h) {
   return best;
 }
 
+// Collider::push_off_edges() without its push.
+bool push_off(const Collider& c, V3& p, double rho) {
+  massspring::contact::ColliderContact<double> push;
+  return c.push_off_edges(p, rho, push);
+}
+
 bool inside_closed_box(const V3& p, const V3& h) { return (p.cwiseAbs() - h).maxCoeff() <= 0; }
 
 // Whether the segment p-q crosses the triangle (a, b, c) (Moller and Trumbore 1997).
@@ -98,38 +104,38 @@ TEST_CASE("push_off_edges: a point beside an edge or a corner, or over a face by
   const double rho = 0.05;
   // Near the edge y = 0.5, z = 2: nearest edge point (0.3, 0.5, 2), moved out radially.
   V3 p(0.3, 0.51, 2.01);
-  REQUIRE(box.push_off_edges(p, rho));
+  REQUIRE(push_off(box, p, rho));
   CHECK((p - (V3(0.3, 0.5, 2) + rho * V3(0, 1, 1) / std::sqrt(2.0))).norm() <= 1e-14);
   // Near the corner (1, 0.5, 2).
   p = V3(1.01, 0.51, 2.01);
-  REQUIRE(box.push_off_edges(p, rho));
+  REQUIRE(push_off(box, p, rho));
   CHECK((p - (V3(1, 0.5, 2) + rho * V3(1, 1, 1) / std::sqrt(3.0))).norm() <= 1e-14);
   // On the top face 2 cm from the rim, and 1 cm over it: lifted along the face's normal to
   // rho from the edge.
   const double lift = std::sqrt(rho * rho - 0.02 * 0.02);
   for (const double over : {0.0, 0.01}) {
     p = V3(0.3, 0.5 + over, 1.98);
-    REQUIRE(box.push_off_edges(p, rho));
+    REQUIRE(push_off(box, p, rho));
     CHECK((p - V3(0.3, 0.5 + lift, 1.98)).norm() <= 1e-14);
   }
   // On the edge: along one of its faces' normals (the first axis), to rho.
   p = V3(0.3, 0.5, 2);
-  REQUIRE(box.push_off_edges(p, rho));
+  REQUIRE(push_off(box, p, rho));
   CHECK((p - V3(0.3, 0.5 + rho, 2)).norm() <= 1e-14);
   // Over the top face near its corner: lifted by what the nearer edge needs.
   p = V3(0.99, 0.5, 1.97);
-  REQUIRE(box.push_off_edges(p, rho));
+  REQUIRE(push_off(box, p, rho));
   CHECK((p - V3(0.99, 0.5 + std::sqrt(rho * rho - 0.01 * 0.01), 1.97)).norm() <= 1e-14);
   // Far from every edge, or inside: unchanged.
   for (const V3& q : {V3(0.3, 0.6, 0.0), V3(0.3, 0.5 + 1e-3, 1.0), V3(0.2, 0.1, 0.3)}) {
     V3 r = q;
-    CHECK_FALSE(box.push_off_edges(r, rho));
+    CHECK_FALSE(push_off(box, r, rho));
     CHECK(r == q);
   }
   // A point already rho from the edge stays.
   p = V3(0.3, 0.5, 2) + rho * V3(0, 0.6, 0.8);
   const V3 at = p;
-  CHECK_FALSE(box.push_off_edges(p, rho * (1 - 1e-12)));
+  CHECK_FALSE(push_off(box, p, rho * (1 - 1e-12)));
   CHECK(p == at);
 }
 
@@ -137,14 +143,14 @@ TEST_CASE("push_off_edges: the collider's thickness adds to the distance; its po
   Collider box = Collider::box(V3(1, 2, 3), kHalf);
   box.set_thickness(0.01);
   V3 p = V3(1, 2, 3) + V3(0.3, 0.51, 2.01);
-  REQUIRE(box.push_off_edges(p, 0.04));
+  REQUIRE(push_off(box, p, 0.04));
   CHECK((p - (V3(1, 2, 3) + V3(0.3, 0.5, 2) + 0.05 * V3(0, 1, 1) / std::sqrt(2.0))).norm() <=
         1e-13);
   // Shapes without edges: nothing.
   for (const Collider& c :
        {Collider::sphere(V3::Zero(), 0.5), Collider::plane(V3::Zero(), V3(0, 1, 0))}) {
     V3 q(0.1, 0.5, 0.0);
-    CHECK_FALSE(c.push_off_edges(q, 0.1));
+    CHECK_FALSE(push_off(c, q, 0.1));
   }
 }
 

@@ -21,8 +21,10 @@
 #include <massspring/error.hpp>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "support/segment_checks.hpp"
 namespace contact = massspring::contact;
 using V3 = massspring::Vector3<double>;
 using M3 = Eigen::Matrix3d;
@@ -372,6 +374,40 @@ TEST_CASE("moving collider: surface velocity v + w x (x - t); begin_step sets th
   check_vec(c.translation(), center + 11 * dt * v, 1e-15);
   const M3 R11 = Eigen::AngleAxisd(w.norm() * 11 * dt, w.normalized()).toRotationMatrix();
   CHECK((c.rotation() - R11).norm() <= 1e-14);
+}
+
+// Collider::surface_displacement(): where the surface point at x (end pose) was at the step's
+// start, by the closed form of the rigid motion (Eigen's angle-axis rotation by w dt about the
+// reference point, which moved by v dt), against the tangent dt (v + w x (x - t)) that it
+// replaces: they differ by the chord's sag, about |w dt|^2 / 2 of the radius.
+TEST_CASE("moving collider: the surface's displacement over a step is its rigid motion's") {
+  const V3 v(0.3, -0.1, 0.2), w(0.0, 0.0, 3.0), center(0.1, 0.2, 0.3);
+  const double dt = 0.1;
+  Collider c = Collider::capsule(center - V3(0.5, 0, 0), center + V3(0.5, 0, 0), 0.05);
+  c.set_velocity(v).set_angular_velocity(w);
+  c.begin_step(dt);
+  const V3 t1 = center + dt * v;
+  const M3 R = Eigen::AngleAxisd(w.norm() * dt, w.normalized()).toRotationMatrix();
+  Random r(11);
+  for (int k = 0; k < 50; ++k) {
+    const V3 x = t1 + r.point(0.5);
+    const V3 start = R.transpose() * (x - t1) + center;
+    check_vec(c.surface_displacement(x, dt), x - start, 1e-15);
+  }
+  // 10 cm from the axis, 0.3 rad a step: the arc's chord and the tangent differ by
+  // 10 cm (1 - cos a, sin a - a), a = 0.3.
+  const V3 x = t1 + V3(0.1, 0, 0);
+  const V3 tangent = dt * (v + w.cross(x - t1));
+  CHECK(std::abs((c.surface_displacement(x, dt) - tangent).norm() -
+                 0.1 * std::sqrt(2 - 2 * std::cos(0.3) - 0.6 * std::sin(0.3) + 0.09)) <= 1e-15);
+  // Translating only: dt v exactly; at rest: 0.
+  Collider sliding = Collider::plane(V3::Zero(), V3(0, 1, 0));
+  sliding.set_velocity(v);
+  sliding.begin_step(dt);
+  CHECK(sliding.surface_displacement(V3(1, 2, 3), dt) == dt * v);
+  Collider still = Collider::plane(V3::Zero(), V3(0, 1, 0));
+  still.begin_step(dt);
+  CHECK(still.surface_displacement(V3(1, 2, 3), dt) == V3::Zero());
 }
 
 // ---- triangle mesh ------------------------------------------------------------------------------
@@ -773,7 +809,8 @@ TEST_CASE("solid colliders: the push of a path through a sphere equals the close
 // distance to the contact zone, thickness included, less a margin of at most 1e-6 of the scale);
 // and, for every shape, still and moving, that no path shorter than the clearance is pushed:
 // ColliderSet's project() leaves its end bit for bit, and far() holds. ColliderSet::clearance() is
-// the least of its colliders' (+infinity for none).
+// the least of its colliders' (+infinity for none). With an edge distance rho (the bands of
+// Collider::push_off_edges()), no path shorter than the clearance less rho is pushed.
 TEST_CASE("clearance: no path shorter than it is pushed; the plane's and sphere's closed forms") {
   const double dt = 1.0 / 30, thickness = 0.01;
   Pts v;
@@ -822,6 +859,14 @@ TEST_CASE("clearance: no path shorter than it is pushed; the plane's and sphere'
           set.project(xs.data(), moved.data(), dt);
           CHECK(moved == xe);
         }
+        // With the solves' edge distance rho: no path shorter than the clearance less rho.
+        const double rho = 0.05;
+        for (int j = 0; j < 10 && clearance > rho; ++j) {
+          const V3 xe = xs + (0.999 * (clearance - rho) * std::abs(r())) * r.point().normalized();
+          Eigen::Vector3d moved = xe;
+          set.project(xs.data(), moved.data(), dt, rho);
+          CHECK(moved == xe);
+        }
       }
       CHECK(tested > 50);
     }
@@ -834,5 +879,114 @@ TEST_CASE("clearance: no path shorter than it is pushed; the plane's and sphere'
   for (int k = 0; k < 50; ++k) {
     const V3 xs = r.point(2.5);
     CHECK(both.clearance(xs) == std::min(both[0].clearance(xs), both[1].clearance(xs)));
+  }
+}
+
+// Collider::push_off_edges() of a capsule: the band of the solves' edge distance rho about its
+// axis, D = max(r + thickness, sqrt(r^2 + rho^2 / 2)), in closed form (beside the axis, beyond an
+// end, on the axis, the pose and the surface's velocity, a thick capsule whose band is its
+// thickness); the plane and the sphere have no band.
+TEST_CASE(
+    "push_off_edges: a capsule keeps points max(r + thickness, sqrt(r^2 + rho^2 / 2)) off its "
+    "axis") {
+  const double r = 0.01, thickness = 0.002, rho = 0.04;
+  const double D = std::sqrt(r * r + rho * rho / 2);  // 3 cm, above r + thickness
+  Collider rod = Collider::capsule(V3(-1, 0, 0), V3(1, 0, 0), r);
+  rod.set_thickness(thickness);
+  contact::ColliderContact<double> push;
+  V3 p(0.3, 0.02, 0);  // beside the axis: straight out
+  REQUIRE(rod.push_off_edges(p, rho, push));
+  check_vec(p, V3(0.3, D, 0), 1e-15);
+  check_vec(push.normal, V3(0, 1, 0), 1e-13);  // rounding of x (0.3) over the depth (1 cm)
+  CHECK(std::abs(push.depth - (D - 0.02)) <= 1e-15);
+  CHECK(push.velocity == V3::Zero());
+  p = V3(1.01, 0.005, 0);  // beyond the end b: radially from b
+  REQUIRE(rod.push_off_edges(p, rho, push));
+  check_vec(p, V3(1, 0, 0) + D * V3(0.01, 0.005, 0).normalized(), 1e-15);
+  p = V3(0.5, 0, 0);  // on the axis (its foot exact in rounding): along a perpendicular
+  REQUIRE(rod.push_off_edges(p, rho, push));
+  CHECK(p.x() == 0.5);
+  CHECK(std::abs(V3(0, p.y(), p.z()).norm() - D) <= 1e-15);
+  // At D already, or farther: unchanged.
+  for (const V3& q : {V3(0.3, 0, D * (1 + 1e-12)), V3(0.5, 0.1, 0.2), V3(1 + D, 0, 0)}) {
+    V3 s = q;
+    CHECK_FALSE(rod.push_off_edges(s, rho, push));
+    CHECK(s == q);
+  }
+  // Moved and turned, and moving: the end pose is used, and the push reports its velocity.
+  Collider turned = rod;
+  turned.set_pose(Eigen::AngleAxisd(M_PI / 2, V3::UnitZ()).toRotationMatrix(), V3(1, 2, 3));
+  turned.set_velocity(V3(0, 0, 0.3));
+  turned.begin_step(0.1);  // the end pose: centre (1, 2, 3.03), axis along y
+  p = V3(1.02, 2.5, 3.03);
+  REQUIRE(turned.push_off_edges(p, rho, push));
+  check_vec(p, V3(1 + D, 2.5, 3.03), 1e-14);
+  check_vec(push.velocity, V3(0, 0, 0.3), 1e-15);
+  // A thick capsule: r + thickness (5.4 cm) is above sqrt(r^2 + rho^2 / 2) (5.05 cm).
+  Collider pole = Collider::capsule(V3(-1, 0, 0), V3(1, 0, 0), 0.05);
+  pole.set_thickness(0.004);
+  p = V3(0.3, 0.052, 0);
+  REQUIRE(pole.push_off_edges(p, 0.01, push));
+  check_vec(p, V3(0.3, 0.054, 0), 1e-15);
+  // Shapes without thin parts: nothing.
+  for (const Collider& c :
+       {Collider::sphere(V3::Zero(), 0.5), Collider::plane(V3::Zero(), V3(0, 1, 0))}) {
+    V3 q(0.1, 0.5, 0.0);
+    CHECK_FALSE(c.push_off_edges(q, rho, push));
+  }
+}
+
+// The guarantee detail::edge_distance() relies on for a capsule, sampled: points pushed by
+// push_off_edges() with rho (from anywhere near the axis and its ends) are D from the axis, and no
+// segment of length <= L = sqrt(2) rho between two of them comes nearer the axis than r (into the
+// solid). Pushed with a smaller rho, such segments do (so the check is not vacuous).
+TEST_CASE("points pushed off a capsule's axis leave no segment of length sqrt(2) rho into it") {
+  const double r = 0.01, thickness = 0.001, rho = 0.04, L = std::sqrt(2.0) * rho;
+  const V3 a(-0.3, 0.1, 0), b(0.3, 0.2, 0.1);
+  Collider rod = Collider::capsule(a, b, r);
+  rod.set_thickness(thickness);
+  Random random(17);
+  const auto pushed = [&](double by) {
+    // A point near the middle or the end b, pushed.
+    V3 x = (random() > 0 ? b : V3((a + b) / 2)) + random.point(0.05);
+    contact::ColliderContact<double> push;
+    rod.push_off_edges(x, by, push);
+    return x;
+  };
+  const auto least = [&](double by, int& segments) {
+    double nearest = 1e300;
+    segments = 0;
+    for (int k = 0; k < 100000 && segments < 5000; ++k) {
+      const V3 p = pushed(by), q = pushed(by);
+      if ((p - q).norm() > L) continue;
+      CHECK((p - segment_closest(p, a, b)).norm() >=
+            (1 - 1e-12) * std::max(r + thickness, std::sqrt(r * r + by * by / 2)));
+      ++segments;
+      nearest = std::min(nearest, massspring::test::segment_segment_distance(p, q, a, b));
+    }
+    return nearest;
+  };
+  int segments = 0;
+  CHECK(least(rho, segments) >= (1 - 1e-9) * r);
+  CHECK(segments == 5000);
+  CHECK(least(rho / 2, segments) < r);
+  CHECK(segments == 5000);
+}
+
+// ColliderSet::project() with an edge distance: Coulomb friction on the band's push, in closed
+// form. A static rod along x (r = 1 cm, rho = 4 cm: D = 3 cm); a point moves from 2.5 cm to
+// 2.2 cm off the axis and 4 mm along it: pushed back out to 3 cm (depth 8 mm) with the
+// tangential 4 mm kept, halved (mu = 0.25: mu depth / 4 mm of it removed) or removed (mu = 1).
+TEST_CASE("project: the band about a capsule's axis has the capsule's Coulomb friction") {
+  const double rho = 0.04, dt = 0.1;
+  for (const auto& [mu, x] : {std::pair{0.0, 0.004}, std::pair{0.25, 0.002}, std::pair{1.0, 0.0}}) {
+    CAPTURE(mu);
+    contact::ColliderSet<double> set;
+    set.add(Collider::capsule(V3(-1, 0, 0), V3(1, 0, 0), 0.01).set_friction(mu));
+    set.begin_step(dt);
+    const V3 xs(0, 0.025, 0);
+    V3 xe(0.004, 0.022, 0);
+    set.project(xs.data(), xe.data(), dt, rho);
+    check_vec(xe, V3(x, 0.03, 0), 1e-15);
   }
 }

@@ -219,20 +219,37 @@ class Collider {
   /// position and thickness (ColliderSet adds the point's).
   [[nodiscard]] Scalar slop() const { return slop_; }
 
-  /// @brief Moves x (a point outside the solid, at the end of the step: the end pose) to
-  /// `distance` + thickness() [m] from the solid's nearest edge or corner when it is closer,
-  /// radially away from it; true when it moved x. Only a box has edges and corners here (the
-  /// other shapes return false). FastMassSpring and BackwardEuler call it inside their solves
-  /// (ColliderSet::project()), so that a cloth edge between two points that keep that distance
-  /// cannot cut the box's rim.
-  bool push_off_edges(V3& x, Scalar distance) const {
-    if (!geometry_ || !geometry_->push_off_edges) return false;
+  /// @brief Keeps x (outside the solid, at the end pose) out of the band the solves keep clear
+  /// about a box's edges and corners (to rho + thickness() from them: BoxShape::push_off_edges())
+  /// or a capsule's axis (radially, to max(r + thickness(), sqrt(r^2 + rho^2 / 2))), rho =
+  /// `distance` [m] the solves' edge distance (integrators/detail/contact_dual.hpp says why no
+  /// segment of length sqrt(2) rho between two points so kept meets the solid). Other shapes:
+  /// false. True when x moved; `push` then holds its unit direction (normal), length (depth) and
+  /// the surface's velocity at x. Called inside the solves (ColliderSet::project()).
+  bool push_off_edges(V3& x, Scalar distance, ColliderContact<Scalar>& push) const {
     V3 p = end_rotation_.transpose() * (x - end_translation_);
-    if (!geometry_->push_off_edges(*this, p, distance + thickness_)) return false;
-    x = end_rotation_ * p + end_translation_;
+    if (shape_ == ColliderShape::Capsule
+            ? !push_off_axis(p, distance)
+            : !geometry_ || !geometry_->push_off_edges ||
+                  !geometry_->push_off_edges(*this, p, distance + thickness_))
+      return false;
+    const V3 to = end_rotation_ * p + end_translation_, moved = to - x;
+    x = to;
+    push.depth = moved.norm();
+    if (!(push.depth > 0)) return false;
+    push.normal = moved / push.depth;
+    push.velocity = surface_velocity(x);
     return true;
   }
-
+  /// @brief The displacement [m] over the step begin_step(dt) set of the surface point at x at
+  /// the step's end: x - (R R_end^T (x - t_end) + t) (R, t the current pose), exact for the rigid
+  /// motion of a turning collider; dt times the velocity for one that only translates, 0 at rest.
+  /// Position-level friction compares a point's displacement with it (ColliderSet).
+  [[nodiscard]] V3 surface_displacement(const V3& x, Scalar dt) const {
+    if (!moving_) return V3::Zero();
+    if (angular_velocity_.isZero(0)) return dt * velocity_;
+    return x - (rotation_ * (end_rotation_.transpose() * (x - end_translation_)) + translation_);
+  }
   /// @brief Sets the pose the collider will have at the end of a step of dt [s] (its velocities
   /// applied); contact() uses it. Called by ColliderSet::begin_step().
   void begin_step(Scalar dt) {
@@ -462,6 +479,17 @@ class Collider {
     // Onto the plane tangent at e, moved out to phi = thickness (e may start a rounding inside).
     c.depth = (e - b).dot(n) + (thickness_ - phi_e);
     c.normal = end_rotation_ * n;
+  }
+
+  // push_off_edges() of a capsule: p (local) closer than D to the axis moves radially from its
+  // nearest axis point to D (along a perpendicular when on the axis).
+  bool push_off_axis(V3& p, Scalar rho) const {
+    const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
+    const Scalar keep =
+        std::max(radius_ + thickness_, std::sqrt(radius_ * radius_ + rho * rho / 2));
+    if (!(d.distance < keep)) return false;
+    p = d.closest + keep * (d.distance > 0 ? V3(-d.n / d.distance) : perpendicular<Scalar>(axis_));
+    return true;
   }
 
   V3 surface_velocity(const V3& x) const {

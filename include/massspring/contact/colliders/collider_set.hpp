@@ -105,10 +105,11 @@ class ColliderSet {
   }
 
   /// @brief The position response of one point (3 coordinates each), x_end moved in place:
-  /// FastMassSpring's projection of an iterate. With `edge_distance` > 0 [m] the point is then
-  /// also kept that far (plus the collider's thickness) from each box's edges and corners
-  /// (Collider::push_off_edges(); the solves' contact term passes the distance
-  /// detail::edge_distance() gives, so that the cloth's edges cannot cut a box's rim).
+  /// FastMassSpring's projection of an iterate. With `edge_distance` rho > 0 [m] the point is then
+  /// also kept out of the band about each box's edges and corners and each capsule's axis that
+  /// Collider::push_off_edges() describes, with Coulomb friction on that push as on the solid's
+  /// (the solves' contact term passes the rho detail::edge_distance() gives, so that the cloth's
+  /// edges cannot cut a box's rim or a rod).
   /// begin_step(dt) must have been called.
   void project(const Scalar* x_start, Scalar* x_end, Scalar dt, Scalar edge_distance = 0) const {
     if (ops_) ops_->project(*this, x_start, x_end, dt, edge_distance);
@@ -190,9 +191,27 @@ class ColliderSet {
     V3 moved = xe;
     bool any = push(xs, moved, nullptr, dt, 0, nullptr, true);
     if (edge_distance > 0)
-      for (const auto& c : colliders_) any = c.push_off_edges(moved, edge_distance) || any;
+      for (const auto& c : colliders_) {
+        ColliderContact<Scalar> k;
+        const V3 d = moved - xs;  // before the push
+        if (!c.push_off_edges(moved, edge_distance, k)) continue;
+        any = true;
+        rub(c, k, V3(d - c.surface_displacement(moved, dt)), moved);
+      }
     if (any)
       for (int c = 0; c < 3; ++c) x_end[c] = moved(c);
+  }
+
+  // Coulomb friction at position level on a push of k.depth along k.normal: takes
+  // coulomb_removed_fraction() of the tangential part of d (the point's displacement over the
+  // step less Collider::surface_displacement(), before the push) off xe.
+  static void rub(const Collider<Scalar>& c, const ColliderContact<Scalar>& k, const V3& d,
+                  V3& xe) {
+    if (!(c.static_friction() > 0)) return;
+    const V3 d_t = d - d.dot(k.normal) * k.normal;
+    const Scalar f = coulomb_removed_fraction(d_t.squaredNorm(), k.depth, c.static_friction(),
+                                              c.kinetic_friction());
+    xe -= f * d_t;
   }
 
   // The response of one point (velocity too when ve is not null); true when anything moved.
@@ -206,16 +225,11 @@ class ColliderSet {
       const Collider<Scalar>& c = colliders_[ci];
       if (!c.contact(xs, xe, slop + c.slop(), k)) continue;
       if (k.depth > 0) {
-        const V3 d = xe - xs - dt * k.velocity;
+        const V3 d = xe - xs - c.surface_displacement(xe, dt);
         xe += k.depth * k.normal;
         moved = true;
         pushed = ci;
-        if (friction && c.static_friction() > 0) {
-          const V3 d_t = d - d.dot(k.normal) * k.normal;
-          const Scalar f = coulomb_removed_fraction(d_t.squaredNorm(), k.depth, c.static_friction(),
-                                                    c.kinetic_friction());
-          xe -= f * d_t;
-        }
+        if (friction) rub(c, k, d, xe);
       }
       if (ve) {
         const V3 vr = *ve - k.velocity;

@@ -34,23 +34,33 @@ void contact_weights(const System& system, Scalar alpha, Scalar h2, Vector<Scala
   }
 }
 
-/// @brief The distance [m] the solves' contact term keeps points from a box's edges and corners:
-/// rho = L / sqrt(2), L the longest edge of the system's surface at its current positions; 0
-/// without a surface or without a box. Two points outside a box, each at least rho from its
-/// edges, are at least sqrt(2) rho = L apart when the segment between them meets the box (the
-/// shortest such segment joins two points on the two faces of an edge, rho from it), so no
-/// surface edge cuts the box, and no box edge pierces a surface triangle (tests/contact/
-/// colliders/test_box_shape.cpp samples both). The end-of-step surface pass
-/// (contact/response/surface_contact.hpp), which tests the cloth's edges against the box's, then
-/// finds nothing to push at the rim at the step's end. Allocates nothing.
+/// @brief The edge distance rho [m] of the solves' contact term: rho = L / sqrt(2), L the longest
+/// edge of the system's surface at its current positions; 0 without a surface, or without a box
+/// or a capsule. The term keeps points rho (plus the thickness) from each box's edges and corners,
+/// and max(r + thickness, sqrt(r^2 + rho^2 / 2)) from each capsule's axis (r its radius;
+/// Collider::push_off_edges()), so that no surface edge meets the solid:
+/// - a box: two points outside it, each at least rho from its edges, are at least sqrt(2) rho = L
+///   apart when the segment between them meets the box (the shortest such segment joins two
+///   points on the two faces of an edge, rho from it); nor does a box edge pierce a surface
+///   triangle (tests/contact/colliders/test_box_shape.cpp samples both);
+/// - a capsule: for any set K and two points P, Q at least D from it, every point m = t P +
+///   (1 - t) Q of the segment is at least sqrt(D^2 - |P - Q|^2 / 4) from K (c the point of K
+///   nearest m: t |P - c|^2 + (1 - t) |Q - c|^2 = |m - c|^2 + t (1 - t) |P - Q|^2), so with K the
+///   axis and |P - Q| <= L the segment stays r from it, outside the rod
+///   (tests/contact/colliders/test_colliders.cpp samples it).
+/// The end-of-step surface pass (contact/response/surface_contact.hpp), which tests the cloth's
+/// edges against a box's edges and a capsule's axis, then finds nothing to push there at the
+/// step's end. Allocates nothing.
 template <class System>
 typename System::Scalar edge_distance(const System& system) {
   using Scalar = typename System::Scalar;
   const auto& triangles = system.surface();
   if (triangles.rows() == 0) return 0;
-  bool box = false;
-  for (const auto& c : system.colliders()) box = box || c.shape() == contact::ColliderShape::Box;
-  if (!box) return 0;
+  bool thin = false;  // a box or a capsule
+  for (const auto& c : system.colliders())
+    thin = thin || c.shape() == contact::ColliderShape::Box ||
+           c.shape() == contact::ColliderShape::Capsule;
+  if (!thin) return 0;
   const auto& x = system.positions();
   Scalar longest2 = 0;
   for (Eigen::Index t = 0; t < triangles.rows(); ++t)
@@ -68,7 +78,7 @@ typename System::Scalar edge_distance(const System& system) {
 /// (P moved nothing) u = 0, target = x, and returns false. `clearance2` [m^2]: the square of
 /// ColliderSet::clearance(x_start) less `edge_distance` when positive, else 0; a z closer than
 /// that to x_start is not projected (P would not move it). `edge_distance` [m]: P also keeps
-/// the point that far from each box's edges and corners (edge_distance() below).
+/// the point out of the band about each box's edges and each capsule's axis (edge_distance()).
 template <class Scalar>
 bool contact_dual_update(const contact::ColliderSet<Scalar>& colliders, const Scalar* x_start,
                          const Scalar* x, Scalar* u, Scalar dt, Scalar* target,

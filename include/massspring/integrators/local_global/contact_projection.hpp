@@ -15,8 +15,9 @@
 /// displacement over the step) and u_i the dual variable [m] (kept from the previous step, 0 after
 /// a factorization):
 ///   z_i = P(x_i + u_i),   u_i <- x_i + u_i - z_i,   right-hand side += w_i (z_i - u_i).
-/// P also keeps points detail::edge_distance() from each box's edges and corners, so that the
-/// iterate has no cloth edge across a box's rim for the end-of-step pass to push off.
+/// P also keeps points out of a band about each box's edges and corners and each capsule's axis
+/// (detail::edge_distance()), so that the iterate has no cloth edge across a box's rim or a rod
+/// for the end-of-step pass to push off.
 /// A point that touches nothing has z_i = x_i and u_i = 0: the term is w_i x_i, a proximal term
 /// that vanishes at convergence. A point in contact converges to x_i = z_i on the surface with
 /// the contact force -w_i u_i [N]: its normal part w_i delta >= 0 (delta the depth of x_i + u_i)
