@@ -717,9 +717,12 @@ def resume(simulate, source, work):
         (["contact.json"], ["--integrator", "symplectic-euler", "--dt", "0.002"]),
         (["contact.json"], ["--integrator", "forward-euler", "--dt", "0.0005"]),
         (["contact.json"], ["--integrator", "backward-euler"]),
-        (["contact.json"], ["--integrator", "linearized-backward-euler"]),
+        # (linearised BackwardEuler at 0.02 s: at 1/30 s its one linear solve a step cannot hold
+        # this coarse cloth under four spinning colliders, and the energy bound refuses step 7)
+        (["contact.json"], ["--integrator", "linearized-backward-euler", "--dt", "0.02"]),
         (["contact.json"], ["--integrator", "backward-euler", "--contact-weight", "1"]),
-        (["contact.json"], ["--integrator", "linearized-backward-euler", "--contact-weight", "1"]),
+        (["contact.json"], ["--integrator", "linearized-backward-euler", "--contact-weight", "1",
+                            "--dt", "0.02"]),
         # self-collision: the state holds the surface and the thickness
         (["--generate", "cloth:8x6"], ["--self-collision", "0.01"]),
         # an XML scene's gravitational attraction, and a JSON scene's own gravity and dt
