@@ -378,8 +378,8 @@ TEST_CASE("moving collider: surface velocity v + w x (x - t); begin_step sets th
 
 // Collider::surface_displacement(): where the surface point at x (end pose) was at the step's
 // start, by the closed form of the rigid motion (Eigen's angle-axis rotation by w dt about the
-// reference point, which moved by v dt), against the tangent dt (v + w x (x - t)) that it
-// replaces: they differ by the chord's sag, about |w dt|^2 / 2 of the radius.
+// reference point, which moved by v dt); it differs from the tangent dt (v + w x (x - t)) by the
+// arc's departure from its tangent, about |w dt|^2 / 2 of the radius.
 TEST_CASE("moving collider: the surface's displacement over a step is its rigid motion's") {
   const V3 v(0.3, -0.1, 0.2), w(0.0, 0.0, 3.0), center(0.1, 0.2, 0.3);
   const double dt = 0.1;
