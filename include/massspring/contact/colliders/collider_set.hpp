@@ -9,10 +9,11 @@
 /// phi(x_e), outward normal n, surface velocity u), colliders taken in the order they were added:
 ///
 /// - Position (when delta > 0): x_e += delta n, then Coulomb friction at position level on the
-///   displacement relative to the surface, d = x_e - x_s - u dt (before the push), tangential part
-///   d_t: the point sticks (x_e -= d_t) when |d_t| <= mu_s delta, else slides back by
-///   mu_k delta along d_t (Macklin et al. 2014, "Unified particle physics for real-time
-///   applications", section 6.1).
+///   displacement relative to the surface, d = x_e - x_s - s (before the push; s the surface
+///   point's displacement over the step, Collider::surface_displacement(): u dt for a collider that
+///   only translates), tangential part d_t: the point sticks (x_e -= d_t) when |d_t| <= mu_s
+///   delta, else slides back by mu_k delta along d_t (Macklin et al. 2014, "Unified particle
+///   physics for real-time applications", section 6.1).
 /// - Velocity (when the relative normal velocity v_n = (v_e - u) . n is < 0): the normal impulse
 ///   per unit mass j = -(1 + e) v_n makes the relative normal velocity -e v_n; the tangential
 ///   relative velocity v_t becomes 0 when |v_t| <= mu_s j (stick) and shrinks by mu_k j otherwise
