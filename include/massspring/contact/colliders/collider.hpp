@@ -31,14 +31,11 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <tuple>
 #include <utility>
 
 #include "massspring/contact/colliders/collider_contact.hpp"
 #include "massspring/contact/colliders/contact_zone.hpp"
 #include "massspring/contact/colliders/rotation.hpp"
-#include "massspring/contact/distance/path_search.hpp"
-#include "massspring/contact/distance/path_sphere.hpp"
 #include "massspring/contact/distance/point_segment.hpp"
 #include "massspring/detail/is_complete.hpp"
 #include "massspring/detail/validate.hpp"
@@ -54,6 +51,9 @@ template <class Scalar>
 struct BoxShape;
 template <class Scalar>
 struct MeshShape;
+// Defined in solid_path.hpp (included at the end of this file).
+template <class Scalar>
+struct SolidPath;
 
 /// @brief An obstacle: shape, material and motion. Build one with the static functions plane(),
 /// sphere(), capsule(), box() and mesh(); set its material and motion with the setters, which
@@ -313,7 +313,9 @@ class Collider {
                                   end_rotation_.transpose() * (x_end - end_translation_), slop, c);
     }
     if (!(phi < thickness_ + slop)) {
-      if (shape_ == ColliderShape::Plane || !crossed(x_start, x_end, phi, slop, c)) return false;
+      if (shape_ == ColliderShape::Plane ||
+          !SolidPath<Scalar>::crossed(*this, x_start, x_end, phi, slop, c))
+        return false;
       c.velocity = surface_velocity(x_end);
       return true;
     }
@@ -323,7 +325,7 @@ class Collider {
     // the point is deeper than half the solid's inner size, a point that came from outside
     // leaves through the tangent plane where its path entered instead.
     if (c.depth > 0 && (c.normal.dot(x_start - x_end) < 0 || c.depth > inner_ / 2))
-      entry_push(x_start, x_end, slop, 1, c);
+      SolidPath<Scalar>::entry_push(*this, x_start, x_end, slop, 1, c);
     c.velocity = surface_velocity(x_end);
     return true;
   }
@@ -331,6 +333,7 @@ class Collider {
  private:
   friend struct BoxShape<Scalar>;
   friend struct MeshShape<Scalar>;
+  friend struct SolidPath<Scalar>;
   // A box's or a mesh's geometry (box_shape.hpp, mesh_shape.hpp): phi and the outward normal at
   // a local point (box), the contact of a path (mesh, as contact() with x_end in the end frame),
   // the radius of a ball about the reference point that holds the shape.
@@ -426,61 +429,6 @@ class Collider {
     return 0;
   }
 
-  // For a point that ends outside a convex solid (phi_end = phi(x_end) >= thickness): whether
-  // its local path a -> b starts outside and passes inside the contact zone; if so, c pushes
-  // x_end onto the tangent plane at the entry. phi is 1-Lipschitz and convex along the path, so
-  // its minimum is at least (phi(a) + phi_end - |b - a|) / 2 (most paths stop there), and is
-  // found by golden-section search (60 steps), or for a sphere at the path's nearest point to
-  // the centre, s = clamp(-a.d / |d|^2, 0, 1) with d = b - a.
-  bool crossed(const V3& x_start, const V3& x_end, Scalar phi_end, Scalar slop,
-               ColliderContact<Scalar>& c) const {
-    const V3 a = rotation_.transpose() * (x_start - translation_);
-    const V3 b = end_rotation_.transpose() * (x_end - end_translation_);
-    V3 n;
-    const Scalar phi_a = local_phi(a, n);
-    if ((phi_a + phi_end - (b - a).norm()) / 2 >= thickness_) return false;
-    const auto phi_at = [&](Scalar s) { return local_phi(a + s * (b - a), n); };
-    Scalar s_min = 0, f_min = 0;  // the path's deepest point and its phi
-    if (shape_ == ColliderShape::Sphere) {
-      s_min = path_nearest_to_origin<Scalar>(a, b - a);
-      f_min = phi_at(s_min);
-    } else {
-      std::tie(s_min, f_min) = golden_section_minimum<Scalar>(phi_at);
-    }
-    if (!(f_min < thickness_)) return false;
-    c.depth = 0;
-    entry_push(x_start, x_end, slop, s_min, c);
-    return c.depth > 0;
-  }
-
-  // For a deep point whose path started outside: the entry point e of the local path a -> b
-  // into the contact zone (the parameters [0, inside]; the path is in the zone at `inside`), and
-  // the push of x_end onto the tangent plane there (outside the solid, which is convex). A
-  // sphere's entry is in closed form (distance/path_sphere.hpp, rho = r + thickness - tol); the
-  // other shapes' by bisection on phi - thickness (48 halvings).
-  void entry_push(const V3& x_start, const V3& x_end, Scalar slop, Scalar inside,
-                  ColliderContact<Scalar>& c) const {
-    const V3 a = rotation_.transpose() * (x_start - translation_);
-    const V3 b = end_rotation_.transpose() * (x_end - end_translation_);
-    V3 n;
-    // A start within a millionth of the solid's inner size below the surface counts as outside
-    // (a point resting on it sits there up to rounding, and must not fall through).
-    const Scalar start_tol = std::max(slop, Scalar(1e-6) * inner_);
-    const Scalar phi_a = local_phi(a, n);
-    if (!(phi_a >= thickness_ - start_tol)) return;  // started inside: nearest surface
-    Scalar lo = 0, hi = inside;
-    if (shape_ == ColliderShape::Sphere &&
-        path_enters_ball(a, V3(b - a), phi_a + radius_, radius_ + thickness_ - start_tol, lo))
-      hi = lo = std::min(lo, inside);
-    lo = bisect_last<Scalar>(
-        [&](Scalar s) { return local_phi(a + s * (b - a), n) >= thickness_ - start_tol; }, lo, hi);
-    const V3 e = a + lo * (b - a);
-    const Scalar phi_e = local_phi(e, n);
-    // Onto the plane tangent at e, moved out to phi = thickness (e may start a rounding inside).
-    c.depth = (e - b).dot(n) + (thickness_ - phi_e);
-    c.normal = end_rotation_ * n;
-  }
-
   // push_off_edges() of a capsule: p (local) closer than D to the axis moves radially from its
   // nearest axis point to D (along a perpendicular when on the axis).
   bool push_off_axis(V3& p, Scalar rho) const {
@@ -513,8 +461,10 @@ class Collider {
   ContactZone<Scalar> zone_;  // refresh(); its motion by begin_step() and rest_at()
   Scalar bound_ = 0;          // the shape's bounding radius about its reference point
   Scalar slop_ = 0;           // slop()
-  Scalar inner_ = 0;          // half the solid's smallest size: deeper, entry_push() decides
+  Scalar inner_ = 0;          // half the solid's smallest size: deeper, SolidPath decides
   bool moving_ = false;       // a velocity or an angular velocity is not zero
 };
 
 }  // namespace massspring::contact
+
+#include "massspring/contact/colliders/solid_path.hpp"
