@@ -123,6 +123,7 @@ class BackwardEuler {
     start_moved_.setZero(n, 3);
     rhs_.setZero(n, 3);
     touches_.assign(std::size_t(n), 0);
+    edge_distance_.setZero(n);
     setup(system);
     detail::require_number("BackwardEuler", "energy_growth", options.energy_growth, false);
     energy_bound_.reset(system, options.energy_growth);
@@ -163,7 +164,7 @@ class BackwardEuler {
     if (contact_) {
       system.colliders().begin_step(h);
       contact_weights(system);
-      edge_distance_ = detail::edge_distance(system);
+      detail::edge_distances(system, edge_distance_);  // sized in precompute(): no allocation
     }
 
     x_ = x0 + h * v0;  // the inertial prediction: x + h v
@@ -363,7 +364,7 @@ class BackwardEuler {
       const Scalar z_before[3] = {target[0] + u[0], target[1] + u[1], target[2] + u[2]};
       const bool touches =
           detail::contact_dual_update(system.colliders(), x0 + 3 * i, x_.data() + 3 * i, u, dt_,
-                                      target, Scalar(0), edge_distance_);
+                                      target, Scalar(0), edge_distance_(i));
       touches_[std::size_t(i)] = touches ? 1 : 0;
       for (int c = 0; c < 3; ++c) {
         residual = std::max(residual, std::abs(u[c] - u_before[c]));
@@ -433,7 +434,7 @@ class BackwardEuler {
   PointsType dual_, target_, start_, start_moved_, rhs_;
   Vector<Scalar> weight_, new_weight_;  // w_i this step [kg]; scratch
   std::vector<char> touches_;
-  Scalar edge_distance_ = 0;  // detail::edge_distance() at the step's start [m]
+  Vector<Scalar> edge_distance_;  // detail::edge_distances() at the step's start, per point [m]
   Vector<Scalar> dx_;
   detail::JacobianAssembly<System> assembly_;
   detail::EnergyBound<System> energy_bound_;  // S taken at precompute()

@@ -1,5 +1,5 @@
 // contact/colliders/box_shape.hpp: Collider::push_off_edges() of a box, in closed form, and the
-// guarantee detail::edge_distance() relies on, checked apart from the code: for points outside a
+// guarantee detail::edge_distances() relies on, checked apart from the code: for points outside a
 // box and at least rho = L / sqrt(2) from its edges and corners (a brute-force distance to the
 // twelve edges; tests/support/box_checks.hpp), no segment of length <= L crosses the box (a slab
 // test) and no triangle with edges <= L is pierced by a box edge (a segment-triangle test); with a
@@ -35,10 +35,11 @@ double distance_to_edges(const V3& p, const V3& h) {
   return best;
 }
 
-// Collider::push_off_edges() without its push.
-bool push_off(const Collider& c, V3& p, double rho) {
+// Collider::push_off_edges() without its push, from a step's start far from the box (its whole
+// band applies) or from `start`.
+bool push_off(const Collider& c, V3& p, double rho, const V3& start = V3(100, 100, 100)) {
   massspring::contact::ColliderContact<double> push;
-  return c.push_off_edges(p, rho, push);
+  return c.push_off_edges(p, start, rho, push);
 }
 
 bool inside_closed_box(const V3& p, const V3& h) { return (p.cwiseAbs() - h).maxCoeff() <= 0; }
@@ -152,6 +153,33 @@ TEST_CASE("push_off_edges: the collider's thickness adds to the distance; its po
     V3 q(0.1, 0.5, 0.0);
     CHECK_FALSE(push_off(c, q, 0.1));
   }
+}
+
+TEST_CASE("push_off_edges: a box's band is at most the start's distance from its edges") {
+  Collider box = Collider::box(V3::Zero(), kHalf);
+  const double rho = 0.05;
+  // Starting 2 cm over the top face, 1 cm from the rim (sqrt(5) cm from the edge), ending 0.5 cm
+  // over it: lifted back to the start's distance from the edge, its height 2 cm, not to the
+  // whole band's sqrt(rho^2 - 1 cm^2).
+  const V3 start(0.3, 0.52, 1.99);
+  V3 p(0.3, 0.505, 1.99);
+  REQUIRE(push_off(box, p, rho, start));
+  CHECK((p - V3(0.3, 0.52, 1.99)).norm() <= 1e-14);
+  // Ending farther than it started (but in the band): unchanged.
+  p = V3(0.3, 0.53, 1.99);
+  CHECK_FALSE(push_off(box, p, rho, start));
+  CHECK(p == V3(0.3, 0.53, 1.99));
+  // Starting inside the box: no band (the box's own push acts).
+  p = V3(0.3, 0.505, 1.99);
+  CHECK_FALSE(push_off(box, p, rho, V3(0.3, 0.4, 1.9)));
+  // A moving box: the start is taken at the start pose, the end at the end pose. Rising 1 cm
+  // over the step, the same start (local (0.3, 0.52, 1.99) then) and an end at local height 0.5 cm
+  // give the local height 2 cm at the end pose.
+  box.set_velocity(V3(0, 0.1, 0));
+  box.begin_step(0.1);
+  p = V3(0.3, 0.515, 1.99);
+  REQUIRE(push_off(box, p, rho, start));
+  CHECK((p - V3(0.3, 0.53, 1.99)).norm() <= 1e-14);
 }
 
 TEST_CASE("points rho = L / sqrt(2) from a box's edges and corners leave no room to cut it") {

@@ -882,6 +882,10 @@ TEST_CASE("clearance: no path shorter than it is pushed; the plane's and sphere'
   }
 }
 
+// A step's start position far from every test collider's edges and axis: push_off_edges() then
+// applies its whole band.
+const V3 kFarStart(100, 100, 100);
+
 // Collider::push_off_edges() of a capsule: the band of the solves' edge distance rho about its
 // axis, D = max(r + thickness, sqrt(r^2 + rho^2 / 2)), in closed form (beside the axis, beyond an
 // end, on the axis, the pose and the surface's velocity, a thick capsule whose band is its
@@ -895,22 +899,22 @@ TEST_CASE(
   rod.set_thickness(thickness);
   contact::ColliderContact<double> push;
   V3 p(0.3, 0.02, 0);  // beside the axis: straight out
-  REQUIRE(rod.push_off_edges(p, rho, push));
+  REQUIRE(rod.push_off_edges(p, kFarStart, rho, push));
   check_vec(p, V3(0.3, D, 0), 1e-15);
   check_vec(push.normal, V3(0, 1, 0), 1e-13);  // rounding of x (0.3) over the depth (1 cm)
   CHECK(std::abs(push.depth - (D - 0.02)) <= 1e-15);
   CHECK(push.velocity == V3::Zero());
   p = V3(1.01, 0.005, 0);  // beyond the end b: radially from b
-  REQUIRE(rod.push_off_edges(p, rho, push));
+  REQUIRE(rod.push_off_edges(p, kFarStart, rho, push));
   check_vec(p, V3(1, 0, 0) + D * V3(0.01, 0.005, 0).normalized(), 1e-15);
   p = V3(0.5, 0, 0);  // on the axis (its foot exact in rounding): along a perpendicular
-  REQUIRE(rod.push_off_edges(p, rho, push));
+  REQUIRE(rod.push_off_edges(p, kFarStart, rho, push));
   CHECK(p.x() == 0.5);
   CHECK(std::abs(V3(0, p.y(), p.z()).norm() - D) <= 1e-15);
   // At D already, or farther: unchanged.
   for (const V3& q : {V3(0.3, 0, D * (1 + 1e-12)), V3(0.5, 0.1, 0.2), V3(1 + D, 0, 0)}) {
     V3 s = q;
-    CHECK_FALSE(rod.push_off_edges(s, rho, push));
+    CHECK_FALSE(rod.push_off_edges(s, kFarStart, rho, push));
     CHECK(s == q);
   }
   // Moved and turned, and moving: the end pose is used, and the push reports its velocity.
@@ -919,24 +923,44 @@ TEST_CASE(
   turned.set_velocity(V3(0, 0, 0.3));
   turned.begin_step(0.1);  // the end pose: centre (1, 2, 3.03), axis along y
   p = V3(1.02, 2.5, 3.03);
-  REQUIRE(turned.push_off_edges(p, rho, push));
+  REQUIRE(turned.push_off_edges(p, kFarStart, rho, push));
   check_vec(p, V3(1 + D, 2.5, 3.03), 1e-14);
   check_vec(push.velocity, V3(0, 0, 0.3), 1e-15);
   // A thick capsule: r + thickness (5.4 cm) is above sqrt(r^2 + rho^2 / 2) (5.05 cm).
   Collider pole = Collider::capsule(V3(-1, 0, 0), V3(1, 0, 0), 0.05);
   pole.set_thickness(0.004);
   p = V3(0.3, 0.052, 0);
-  REQUIRE(pole.push_off_edges(p, 0.01, push));
+  REQUIRE(pole.push_off_edges(p, kFarStart, 0.01, push));
   check_vec(p, V3(0.3, 0.054, 0), 1e-15);
   // Shapes without thin parts: nothing.
   for (const Collider& c :
        {Collider::sphere(V3::Zero(), 0.5), Collider::plane(V3::Zero(), V3(0, 1, 0))}) {
     V3 q(0.1, 0.5, 0.0);
-    CHECK_FALSE(c.push_off_edges(q, rho, push));
+    CHECK_FALSE(c.push_off_edges(q, kFarStart, rho, push));
   }
 }
 
-// The guarantee detail::edge_distance() relies on for a capsule, sampled: points pushed by
+// The band about a capsule's axis is at most the start's distance from it, and at least
+// r + thickness (closed forms).
+TEST_CASE("push_off_edges: a capsule's band is at most the start's distance from its axis") {
+  const double r = 0.01, thickness = 0.002, rho = 0.04;  // the whole band: D = 3 cm
+  Collider rod = Collider::capsule(V3(-1, 0, 0), V3(1, 0, 0), r);
+  rod.set_thickness(thickness);
+  contact::ColliderContact<double> push;
+  // Starting 2 cm from the axis, ending 1.5 cm from it: back to 2 cm.
+  V3 p(0.3, 0.015, 0);
+  REQUIRE(rod.push_off_edges(p, V3(0.3, 0.02, 0), rho, push));
+  check_vec(p, V3(0.3, 0.02, 0), 1e-15);
+  // Ending at 2.5 cm: unchanged.
+  p = V3(0.3, 0.025, 0);
+  CHECK_FALSE(rod.push_off_edges(p, V3(0.3, 0.02, 0), rho, push));
+  // Starting in the solid's reach (0.5 cm): r + thickness still holds.
+  p = V3(0.3, 0.011, 0);
+  REQUIRE(rod.push_off_edges(p, V3(0.3, 0.005, 0), rho, push));
+  check_vec(p, V3(0.3, r + thickness, 0), 1e-15);
+}
+
+// The guarantee detail::edge_distances() relies on for a capsule, sampled: points pushed by
 // push_off_edges() with rho (from anywhere near the axis and its ends) are D from the axis, and no
 // segment of length <= L = sqrt(2) rho between two of them comes nearer the axis than r (into the
 // solid). Pushed with a smaller rho, such segments do (so the check is not vacuous).
@@ -950,7 +974,7 @@ TEST_CASE("points pushed off a capsule's axis leave no segment of length sqrt(2)
     // A point near the middle or the end b, pushed.
     V3 x = (random() > 0 ? b : V3((a + b) / 2)) + random.point(0.05);
     contact::ColliderContact<double> push;
-    rod.push_off_edges(x, by, push);
+    rod.push_off_edges(x, kFarStart, by, push);
     return x;
   };
   const auto least = [&](double by, int& segments) {
@@ -974,7 +998,7 @@ TEST_CASE("points pushed off a capsule's axis leave no segment of length sqrt(2)
 }
 
 // ColliderSet::project() with an edge distance: Coulomb friction on the band's push, in closed
-// form. A static rod along x (r = 1 cm, rho = 4 cm: D = 3 cm); a point moves from 2.5 cm to
+// form. A static rod along x (r = 1 cm, rho = 4 cm: D = 3 cm); a point moves from 3.3 cm to
 // 2.2 cm off the axis and 4 mm along it: pushed back out to 3 cm (depth 8 mm) with the
 // tangential 4 mm kept, halved (mu = 0.25: mu depth / 4 mm of it removed) or removed (mu = 1).
 TEST_CASE("project: the band about a capsule's axis has the capsule's Coulomb friction") {
@@ -984,7 +1008,7 @@ TEST_CASE("project: the band about a capsule's axis has the capsule's Coulomb fr
     contact::ColliderSet<double> set;
     set.add(Collider::capsule(V3(-1, 0, 0), V3(1, 0, 0), 0.01).set_friction(mu));
     set.begin_step(dt);
-    const V3 xs(0, 0.025, 0);
+    const V3 xs(0, 0.033, 0);
     V3 xe(0.004, 0.022, 0);
     set.project(xs.data(), xe.data(), dt, rho);
     check_vec(xe, V3(x, 0.03, 0), 1e-15);

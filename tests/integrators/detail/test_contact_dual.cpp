@@ -1,4 +1,4 @@
-// integrators/detail/contact_dual.hpp: edge_distance() in closed form, and what it is for: a
+// integrators/detail/contact_dual.hpp: edge_distances() in closed form, and what it is for: a
 // cloth dropped on a table (a box) with FastMassSpring's defaults at dt = 1/30 s ends with no
 // link past 15% strain and no cloth edge meeting the box, both computed here from the positions
 // (a slab test per edge), the end-of-step pass having nothing to hold at the rim. Likewise a
@@ -13,6 +13,7 @@
 #include <massspring/contact/colliders/box_shape.hpp>
 #include <massspring/contact/self_collision.hpp>
 #include <massspring/forces/gravity.hpp>
+#include <massspring/integrators/backward_euler.hpp>
 #include <massspring/integrators/detail/contact_dual.hpp>
 #include <massspring/integrators/local_global/fast_mass_spring.hpp>
 #include <massspring/scene/contact_recipes.hpp>
@@ -51,15 +52,46 @@ massspring::ColliderDescription<double> box(const V3& c, const V3& h) {
 
 using namespace contact_dual_test;
 
-TEST_CASE("edge_distance: the longest surface edge over sqrt(2), with a box or a capsule; else 0") {
+TEST_CASE("edge_distances: per point, the longest edge of its triangles over sqrt(2); else 0") {
   // 11 x 11 points over 0.5 m: squares of 5 cm cut into triangles, whose diagonals (7.07 cm) are
-  // the longest edges: rho = 0.05 sqrt(2) / sqrt(2) = 5 cm.
+  // the longest edges: rho = 0.05 sqrt(2) / sqrt(2) = 5 cm at every point.
   massspring::SceneDescription<double> scene =
       massspring::detail::contact_cloth(11, 11, 0.5, 0.5, 1.0);
   scene.colliders = {box(V3(0, 0.5, 0), V3(0.2, 0.2, 0.2))};
-  const System with_box = massspring::make_system<System>(scene);
+  System with_box = massspring::make_system<System>(scene);
   REQUIRE(with_box.surface().rows() > 0);
-  CHECK(massspring::detail::edge_distance(with_box) == doctest::Approx(0.05).epsilon(1e-12));
+  Eigen::VectorXd rho;
+  massspring::detail::edge_distances(with_box, rho);
+  REQUIRE(rho.size() == 121);
+  for (Eigen::Index i = 0; i < rho.size(); ++i)
+    CHECK(rho(i) == doctest::Approx(0.05).epsilon(1e-12));
+
+  // One point lifted 1 m: the edges from it are the longest of its triangles (over 1 m against
+  // 7.07 cm), so its rho is its farthest triangle neighbour's distance over sqrt(2), each
+  // neighbour's at least its own distance from it over sqrt(2); every other point keeps 5 cm.
+  const int lifted = 5 * 11 + 5;
+  massspring::Points<double> moved = with_box.positions();
+  moved(lifted, 1) += 1;
+  with_box.set_positions(moved);
+  massspring::detail::edge_distances(with_box, rho);
+  std::vector<double> from_lifted(121, 0.0);  // distance to `lifted` of its triangle neighbours
+  const massspring::Triangles& t = with_box.surface();
+  for (Eigen::Index f = 0; f < t.rows(); ++f) {
+    if (t(f, 0) != lifted && t(f, 1) != lifted && t(f, 2) != lifted) continue;
+    for (int k = 0; k < 3; ++k)
+      from_lifted[std::size_t(t(f, k))] = (moved.row(t(f, k)) - moved.row(lifted)).norm();
+  }
+  double farthest = 0;
+  for (int i = 0; i < 121; ++i) {
+    farthest = std::max(farthest, from_lifted[std::size_t(i)]);
+    if (i == lifted) continue;
+    if (from_lifted[std::size_t(i)] == 0)
+      CHECK(rho(i) == doctest::Approx(0.05).epsilon(1e-12));
+    else
+      CHECK(rho(i) >= from_lifted[std::size_t(i)] / std::sqrt(2.0) * (1 - 1e-12));
+  }
+  CHECK(farthest > 1);
+  CHECK(rho(lifted) == doctest::Approx(farthest / std::sqrt(2.0)).epsilon(1e-12));
 
   massspring::ColliderDescription<double> rod;
   rod.shape = massspring::contact::ColliderShape::Capsule;
@@ -67,16 +99,49 @@ TEST_CASE("edge_distance: the longest surface edge over sqrt(2), with a box or a
   rod.b = V3(0.5, 0.5, 0);
   rod.radius = 0.01;
   scene.colliders = {rod};
-  CHECK(massspring::detail::edge_distance(massspring::make_system<System>(scene)) ==
-        doctest::Approx(0.05).epsilon(1e-12));
+  massspring::detail::edge_distances(massspring::make_system<System>(scene), rho);
+  CHECK(rho.minCoeff() == doctest::Approx(0.05).epsilon(1e-12));
+  CHECK(rho.maxCoeff() == doctest::Approx(0.05).epsilon(1e-12));
 
   scene.colliders = {massspring::detail::contact_sphere(V3(0, 0.5, 0), 0.2)};
-  CHECK(massspring::detail::edge_distance(massspring::make_system<System>(scene)) == 0);
+  massspring::detail::edge_distances(massspring::make_system<System>(scene), rho);
+  CHECK(rho.size() == 121);
+  CHECK(rho.isZero(0));
 
   scene.colliders = {box(V3(0, 0.5, 0), V3(0.2, 0.2, 0.2))};
   System no_surface = massspring::make_system<System>(scene);
   no_surface.set_surface(massspring::Triangles(0, 3));
-  CHECK(massspring::detail::edge_distance(no_surface) == 0);
+  massspring::detail::edge_distances(no_surface, rho);
+  CHECK(rho.isZero(0));
+}
+
+TEST_CASE("a cloth with one far point over a rod: its long triangles' band throws nothing out") {
+  // The clothesline's cloth 10 cm over its 1 cm rod, one point 30 m away (its springs at rest
+  // there): the band of its triangles is 21 m wide, but the points start 10 cm from the axis, and
+  // the band never pushes a point farther than it started, so one step moves every point by
+  // about what gravity gives (g dt^2 = 1.1 cm), not by metres.
+  massspring::SceneDescription<double> scene = massspring::clothesline_scene();
+  const int far = 5 * 31 + 15;
+  scene.vertices(far, 2) += 30;
+  System s = massspring::make_system<System>(scene);
+  s.add_force(massspring::Gravity<double>({0, -9.8, 0}));
+  const massspring::Points<double> start = s.positions();
+  for (const bool backward_euler : {false, true}) {
+    s.set_positions(start);
+    s.set_velocities(massspring::Points<double>::Zero(start.rows(), 3));
+    massspring::StepReport report;
+    if (backward_euler) {
+      massspring::BackwardEuler<System> solver;  // the defaults
+      solver.precompute(s, 1.0 / 30);
+      report = solver.step(s);
+    } else {
+      massspring::FastMassSpring<System> solver;  // the defaults
+      solver.precompute(s, 1.0 / 30);
+      report = solver.step(s);
+    }
+    REQUIRE(report.ok());
+    CHECK((s.positions() - start).rowwise().norm().maxCoeff() < 0.05);
+  }
 }
 
 TEST_CASE("a cloth dropped on a table: no link past 15%, no cloth edge through the box") {

@@ -223,15 +223,21 @@ class Collider {
   /// about a box's edges and corners (to rho + thickness() from them: BoxShape::push_off_edges())
   /// or a capsule's axis (radially, to max(r + thickness(), sqrt(r^2 + rho^2 / 2))), rho =
   /// `distance` [m] the solves' edge distance (integrators/detail/contact_dual.hpp says why no
-  /// segment of length sqrt(2) rho between two points so kept meets the solid). Other shapes:
-  /// false. True when x moved; `push` then holds its unit direction (normal), length (depth) and
-  /// the surface's velocity at x. Called inside the solves (ColliderSet::project()).
-  bool push_off_edges(V3& x, Scalar distance, ColliderContact<Scalar>& push) const {
+  /// segment of length sqrt(2) rho between two points so kept meets the solid). The band is never
+  /// wider than the distance of x_start (the point's position at the step's start, at the start
+  /// pose) from the edges or the axis: a point that starts the step inside the band is kept from
+  /// going deeper, not thrown out to its width (a long surface edge's band can be metres wide;
+  /// the end-of-step pass keeps the no-crossing guarantee). Other shapes: false. True when x
+  /// moved; `push` then holds its unit direction (normal), length (depth) and the surface's
+  /// velocity at x. Called inside the solves (ColliderSet::project()).
+  bool push_off_edges(V3& x, const V3& x_start, Scalar distance,
+                      ColliderContact<Scalar>& push) const {
     V3 p = end_rotation_.transpose() * (x - end_translation_);
+    const V3 p_start = rotation_.transpose() * (x_start - translation_);
     if (shape_ == ColliderShape::Capsule
-            ? !push_off_axis(p, distance)
+            ? !push_off_axis(p, p_start, distance)
             : !geometry_ || !geometry_->push_off_edges ||
-                  !geometry_->push_off_edges(*this, p, distance + thickness_))
+                  !geometry_->push_off_edges(*this, p, p_start, distance + thickness_))
       return false;
     const V3 to = end_rotation_ * p + end_translation_, moved = to - x;
     x = to;
@@ -342,7 +348,7 @@ class Collider {
     bool (*contact)(const Collider&, const V3& x_start, const V3& b, Scalar slop,
                     ColliderContact<Scalar>& c);
     Scalar (*bound)(const Collider&);
-    bool (*push_off_edges)(const Collider&, V3& p, Scalar distance);
+    bool (*push_off_edges)(const Collider&, V3& p, const V3& p_start, Scalar distance);
   };
 
   Collider(ColliderShape shape, const V3& reference) : shape_(shape), translation_(reference) {
@@ -430,11 +436,13 @@ class Collider {
   }
 
   // push_off_edges() of a capsule: p (local) closer than D to the axis moves radially from its
-  // nearest axis point to D (along a perpendicular when on the axis).
-  bool push_off_axis(V3& p, Scalar rho) const {
+  // nearest axis point to D (along a perpendicular when on the axis), D at most p_start's
+  // distance from the axis and at least r + thickness.
+  bool push_off_axis(V3& p, const V3& p_start, Scalar rho) const {
     const auto d = point_segment_distance<Scalar>(p, -axis_, axis_);
-    const Scalar keep =
-        std::max(radius_ + thickness_, std::sqrt(radius_ * radius_ + rho * rho / 2));
+    const Scalar band = std::min(std::sqrt(radius_ * radius_ + rho * rho / 2),
+                                 point_segment_distance<Scalar>(p_start, -axis_, axis_).distance);
+    const Scalar keep = std::max(radius_ + thickness_, band);
     if (!(d.distance < keep)) return false;
     p = d.closest + keep * (d.distance > 0 ? V3(-d.n / d.distance) : perpendicular<Scalar>(axis_));
     return true;

@@ -108,9 +108,10 @@ class ColliderSet {
   /// @brief The position response of one point (3 coordinates each), x_end moved in place:
   /// FastMassSpring's projection of an iterate. With `edge_distance` rho > 0 [m] the point is then
   /// also kept out of the band about each box's edges and corners and each capsule's axis that
-  /// Collider::push_off_edges() describes, with Coulomb friction on that push as on the solid's
-  /// (the solves' contact term passes the rho detail::edge_distance() gives, so that the cloth's
-  /// edges cannot cut a box's rim or a rod).
+  /// Collider::push_off_edges() describes (never wider than x_start's distance from the edges or
+  /// the axis), with Coulomb friction on that push as on the solid's (the solves' contact term
+  /// passes the point's rho from detail::edge_distances(), so that the cloth's edges cannot cut a
+  /// box's rim or a rod).
   /// begin_step(dt) must have been called.
   void project(const Scalar* x_start, Scalar* x_end, Scalar dt, Scalar edge_distance = 0) const {
     if (ops_) ops_->project(*this, x_start, x_end, dt, edge_distance);
@@ -195,7 +196,7 @@ class ColliderSet {
       for (const auto& c : colliders_) {
         ColliderContact<Scalar> k;
         const V3 d = moved - xs;  // before the push
-        if (!c.push_off_edges(moved, edge_distance, k)) continue;
+        if (!c.push_off_edges(moved, xs, edge_distance, k)) continue;
         any = true;
         rub(c, k, V3(d - c.surface_displacement(moved, dt)), moved);
       }

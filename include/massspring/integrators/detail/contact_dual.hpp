@@ -34,11 +34,14 @@ void contact_weights(const System& system, Scalar alpha, Scalar h2, Vector<Scala
   }
 }
 
-/// @brief The edge distance rho [m] of the solves' contact term: rho = L / sqrt(2), L the longest
-/// edge of the system's surface at its current positions; 0 without a surface, or without a box
-/// or a capsule. The term keeps points rho (plus the thickness) from each box's edges and corners,
-/// and max(r + thickness, sqrt(r^2 + rho^2 / 2)) from each capsule's axis (r its radius;
-/// Collider::push_off_edges()), so that no surface edge meets the solid:
+/// @brief The edge distance rho_i [m] of each point of the solves' contact term, into `rho`
+/// (resized to the points; allocates only then): rho_i = L_i / sqrt(2), L_i the longest edge of
+/// the surface triangles that hold point i, at the system's current positions (0 for a point on
+/// no triangle); every rho_i is 0 without a box or a capsule. The term keeps point i rho_i (plus
+/// the thickness) from each box's edges and corners, and max(r + thickness, sqrt(r^2 +
+/// rho_i^2 / 2)) from each capsule's axis (r its radius; Collider::push_off_edges()), so that no
+/// edge of a surface triangle meets the solid, each triangle's three points having at least the
+/// rho of its own longest edge:
 /// - a box: two points outside it, each at least rho from its edges, are at least sqrt(2) rho = L
 ///   apart when the segment between them meets the box (the shortest such segment joins two
 ///   points on the two faces of an edge, rho from it); nor does a box edge pierce a surface
@@ -48,27 +51,30 @@ void contact_weights(const System& system, Scalar alpha, Scalar h2, Vector<Scala
 ///   nearest m: t |P - c|^2 + (1 - t) |Q - c|^2 = |m - c|^2 + t (1 - t) |P - Q|^2), so with K the
 ///   axis and |P - Q| <= L the segment stays r from it, outside the rod
 ///   (tests/contact/colliders/test_colliders.cpp samples it).
-/// The end-of-step surface pass (contact/response/surface_contact.hpp), which tests the cloth's
-/// edges against a box's edges and a capsule's axis, then finds nothing to push there at the
-/// step's end. Allocates nothing.
+/// Per point, one long triangle somewhere in the surface widens the band only about its own
+/// points. The end-of-step surface pass (contact/response/surface_contact.hpp), which tests the
+/// cloth's edges against a box's edges and a capsule's axis, then finds nothing to push there at
+/// the step's end.
 template <class System>
-typename System::Scalar edge_distance(const System& system) {
+void edge_distances(const System& system, Vector<typename System::Scalar>& rho) {
   using Scalar = typename System::Scalar;
-  const auto& triangles = system.surface();
-  if (triangles.rows() == 0) return 0;
+  rho.setZero(system.num_points());
   bool thin = false;  // a box or a capsule
   for (const auto& c : system.colliders())
     thin = thin || c.shape() == contact::ColliderShape::Box ||
            c.shape() == contact::ColliderShape::Capsule;
-  if (!thin) return 0;
+  if (!thin) return;
+  const auto& triangles = system.surface();
   const auto& x = system.positions();
-  Scalar longest2 = 0;
-  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    Scalar longest2 = 0;
     for (int k = 0; k < 3; ++k)
       longest2 = std::max(
           longest2,
           Scalar((x.row(triangles(t, k)) - x.row(triangles(t, (k + 1) % 3))).squaredNorm()));
-  return std::sqrt(longest2 / 2);
+    const Scalar r = std::sqrt(longest2 / 2);
+    for (int k = 0; k < 3; ++k) rho(triangles(t, k)) = std::max(rho(triangles(t, k)), r);
+  }
 }
 
 /// @brief At the iterate x of one point (3 coordinates [m]), with its scaled dual variable u [m]
@@ -78,7 +84,8 @@ typename System::Scalar edge_distance(const System& system) {
 /// (P moved nothing) u = 0, target = x, and returns false. `clearance2` [m^2]: the square of
 /// ColliderSet::clearance(x_start) less `edge_distance` when positive, else 0; a z closer than
 /// that to x_start is not projected (P would not move it). `edge_distance` [m]: P also keeps
-/// the point out of the band about each box's edges and each capsule's axis (edge_distance()).
+/// the point out of the band about each box's edges and each capsule's axis (the point's
+/// edge_distances()).
 template <class Scalar>
 bool contact_dual_update(const contact::ColliderSet<Scalar>& colliders, const Scalar* x_start,
                          const Scalar* x, Scalar* u, Scalar dt, Scalar* target,

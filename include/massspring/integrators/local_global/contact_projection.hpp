@@ -16,16 +16,15 @@
 /// a factorization):
 ///   z_i = P(x_i + u_i),   u_i <- x_i + u_i - z_i,   right-hand side += w_i (z_i - u_i).
 /// P also keeps points out of a band about each box's edges and corners and each capsule's axis
-/// (detail::edge_distance()), so that the iterate has no cloth edge across a box's rim or a rod
-/// for the end-of-step pass to push off.
-/// A point that touches nothing has z_i = x_i and u_i = 0: the term is w_i x_i, a proximal term
-/// that vanishes at convergence. A point in contact converges to x_i = z_i on the surface with
-/// the contact force -w_i u_i [N]: its normal part w_i delta >= 0 (delta the depth of x_i + u_i)
-/// and its tangential part opposed to the displacement over the step, of length <= mu w_i delta
-/// (equal when sliding) - Signorini's condition and Coulomb's law for one implicit-Euler step,
-/// without the error of a penalty (without u the fixed point would sit inside by the depth the
-/// weight allows, and its friction would be scaled down with it). Pinned points (penalty pins)
-/// keep the proximal term without projection.
+/// (detail::edge_distances(), per point), so that the iterate has no cloth edge across a box's rim
+/// or a rod for the end-of-step pass to push off. A point that touches nothing has z_i = x_i and
+/// u_i = 0: the term is w_i x_i, a proximal term that vanishes at convergence. A point in contact
+/// converges to x_i = z_i on the surface with the contact force -w_i u_i [N]: its normal part w_i
+/// delta >= 0 (delta the depth of x_i + u_i) and its tangential part opposed to the displacement
+/// over the step, of length <= mu w_i delta (equal when sliding) - Signorini's condition and
+/// Coulomb's law for one implicit-Euler step, without the error of a penalty (without u the fixed
+/// point would sit inside by the depth the weight allows, and its friction would be scaled down
+/// with it). Pinned points (penalty pins) keep the proximal term without projection.
 ///
 /// E_c = w_i / 2 |x_i - P(x_i)|^2 [J] (0 on the surface or outside) is what energy() adds to the
 /// step's objective: a merit for the accelerated loops' guard and the report, not an energy the
@@ -58,6 +57,7 @@ class ContactProjection {
     dual_.setZero(3 * Eigen::Index(nr));
     kept_.setZero(3 * Eigen::Index(nr));
     clearance2_.setZero(nr);
+    edge_distance_.setZero(system.num_points());
     for (int r = 0; r < nr; ++r) {
       const int i = reduced.point[std::size_t(r)];
       point_[std::size_t(r)] = i;
@@ -81,13 +81,13 @@ class ContactProjection {
     x_start_ = system.positions().data();
     origin_ = origin.data();
     dt_ = dt;
-    base_ = rhs0.head(base_.size());  // same size: no allocation
-    edge_distance_ = detail::edge_distance(system);
+    base_ = rhs0.head(base_.size());                 // same size: no allocation
+    detail::edge_distances(system, edge_distance_);  // same size: no allocation
     for (int r = 0; r < int(weight_.size()); ++r) {
       const Scalar c = projects_[std::size_t(r)]
                            ? colliders_->clearance(Eigen::Map<const Vector3<Scalar>>(
                                  x_start_ + 3 * point_[std::size_t(r)])) -
-                                 edge_distance_
+                                 edge_distance_(point_[std::size_t(r)])
                            : Scalar(0);
       clearance2_(r) = c > 0 ? c * c : Scalar(0);
     }
@@ -147,9 +147,9 @@ class ContactProjection {
         continue;
       }
       Scalar target[3];
-      const bool touches =
-          detail::contact_dual_update(*colliders_, x_start_ + 3 * point_[std::size_t(r)], xr,
-                                      dual + 3 * r, dt_, target, clearance2_(r), edge_distance_);
+      const bool touches = detail::contact_dual_update(
+          *colliders_, x_start_ + 3 * point_[std::size_t(r)], xr, dual + 3 * r, dt_, target,
+          clearance2_(r), edge_distance_(point_[std::size_t(r)]));
       for (int c = 0; c < 3; ++c) b_r[c] = b0_r[c] + w * (target[c] - o[c]);
       if (Energy && touches) {
         Scalar p[3] = {xr[0], xr[1], xr[2]};
@@ -177,7 +177,7 @@ class ContactProjection {
     const Scalar* xs = x_start_ + 3 * point_[std::size_t(r)];
     const Scalar d0 = x0 - xs[0], d1 = x1 - xs[1], d2 = x2 - xs[2];
     if (d0 * d0 + d1 * d1 + d2 * d2 < clearance2_(r)) return 0;  // P moves nothing
-    colliders_->project(xs, xr, dt_, edge_distance_);
+    colliders_->project(xs, xr, dt_, edge_distance_(point_[std::size_t(r)]));
     const Scalar p0 = xr[0] - x0, p1 = xr[1] - x1, p2 = xr[2] - x2;
     return double(weight_(r) / 2 * (p0 * p0 + p1 * p1 + p2 * p2));
   }
@@ -195,7 +195,7 @@ class ContactProjection {
   const Scalar* x_start_ = nullptr;
   const Scalar* origin_ = nullptr;  // 3 per row [m]
   Scalar dt_ = 0;
-  Scalar edge_distance_ = 0;  // detail::edge_distance() at the step's start [m]
+  Vector<Scalar> edge_distance_;  // detail::edge_distances() at the step's start, per point [m]
   bool active_ = false;
 };
 
