@@ -69,7 +69,8 @@ void bind_step_report(py::module_& m) {
           "blew_up", &StepReport::blew_up,
           "True when the end state's energy passed the integrator's bound (energy_growth) "
           "or a DivergenceGuard's, or the contact response added more than S / 2 + S_c "
-          "(contact_work): nothing changed.")
+          "(contact_work), or a Linearized BackwardEuler step raised the incremental "
+          "potential it linearises (its linear model failed): nothing changed.")
       .def_readonly("contact_impulses", &StepReport::contact_impulses,
                     "Surface contact's repulsion and collision impulses in this step.")
       .def_readonly("contact_zone_points", &StepReport::contact_zone_points,

@@ -10,11 +10,13 @@
 #include <massspring/forces/linear_drag.hpp>
 #include <massspring/integrators/backward_euler.hpp>
 #include <massspring/integrators/fast_mass_spring.hpp>
+#include <massspring/io/json_scene.hpp>
 #include <massspring/scene/cloth.hpp>
 #include <massspring/scene/make_system.hpp>
 #include <random>
 
 #include "support/alloc_counter.hpp"
+#include "support/paths.hpp"
 #include "support/small_systems.hpp"
 #include "support/uniform_forces.hpp"
 
@@ -285,5 +287,63 @@ TEST_CASE(
     const massspring::StepReport l = first_step(linearized);
     CHECK(l.ok());
     CHECK(l.convergence == Convergence::NotTested);
+  }
+}
+
+// Linearized BackwardEuler takes one Newton step on the incremental potential
+//   phi(x) = sum_i m_i |x_i - x_i^0 - h v_i^0|^2 / (2 h^2) + U(x)
+// from the guess x^0 + h v^0. examples/scenes/flag.json (3,200 points, no colliders) under
+// gravity at 1/30 s: the first steps lower phi, then one raises it (its matrix is indefinite
+// where springs compress) and the state runs away. That step is refused (blew_up), nothing
+// changed; with the check off (energy_growth 0) the same step is committed, and phi computed here
+// from the committed state shows it went uphill.
+TEST_CASE("BackwardEuler Linearized: a step whose linear solve raises phi is refused") {
+  const massspring::SceneDescription<double> scene = massspring::io::read_json_scene<double>(
+      massspring::test::source_dir() / "examples" / "scenes" / "flag.json");
+  const double h = 1.0 / 30;
+  const auto phi = [h](const SystemS& s, const Pts& x0, const Pts& v0, const Pts& x) {
+    double inertia = 0;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      inertia += s.masses()(i) * (x.row(i) - x0.row(i) - h * v0.row(i)).squaredNorm();
+    return inertia / (2 * h * h) + massspring::potential_energy(s, x);
+  };
+  // The first step that the check refuses, and the state before it.
+  SystemS checked = massspring::make_system<SystemS>(scene);
+  checked.add_force(massspring::Gravity<double>({0, -9.8, 0}));
+  BackwardEuler<SystemS> linearized;
+  linearized.options.mode = BackwardEulerMode::Linearized;
+  linearized.precompute(checked, h);
+  int refused = 0;
+  for (int k = 1; k <= 20 && refused == 0; ++k) {
+    const Pts x0 = checked.positions(), v0 = checked.velocities();
+    const massspring::StepReport report = linearized.step(checked);
+    if (report.ok()) continue;
+    refused = k;
+    CHECK(report.blew_up);
+    CHECK(report.finite);
+    CHECK(checked.positions() == x0);  // nothing changed
+    CHECK(checked.velocities() == v0);
+  }
+  REQUIRE(refused > 1);
+
+  // The same run with the checks off: every step before `refused` lowered phi, that one raised it.
+  SystemS unchecked = massspring::make_system<SystemS>(scene);
+  unchecked.add_force(massspring::Gravity<double>({0, -9.8, 0}));
+  BackwardEuler<SystemS> off;
+  off.options.mode = BackwardEulerMode::Linearized;
+  off.options.energy_growth = 0;
+  off.precompute(unchecked, h);
+  for (int k = 1; k <= refused; ++k) {
+    const Pts x0 = unchecked.positions(), v0 = unchecked.velocities();
+    Pts guess = x0 + h * v0;
+    for (const int p : unchecked.pinned()) guess.row(p) = x0.row(p);  // the flag's pins are still
+    const double before = phi(unchecked, x0, v0, guess);
+    REQUIRE(off.step(unchecked).ok());
+    const double after = phi(unchecked, x0, v0, unchecked.positions());
+    CAPTURE(k);
+    if (k < refused)
+      CHECK(after <= before);
+    else
+      CHECK(after > before + 0.01 * std::abs(before));
   }
 }

@@ -593,6 +593,16 @@ def hint(simulate, source, work):
     result = run(simulate, ["--generate", "chain:10", "--integrator", "backward-euler", "--dt",
                             "1", "--steps", "5"], work)
     check(prefix not in result.stderr, f"backward Euler: {result.stderr!r}")
+    # linearised BackwardEuler on the flag at 1/30 s: its second step's linear solve goes uphill
+    # on the incremental potential; refused, and the second line says that it can be why
+    flag = os.path.join(source, "examples", "scenes", "flag.json")
+    result = run(simulate, [flag, "--integrator", "linearized-backward-euler", "--steps", "10",
+                            "--out", os.path.join(work, "flag_frames")], work)
+    check(result.returncode == 2, f"linearised flag: exit {result.returncode} {result.stderr!r}")
+    check(P + "step 2: the total energy passed the divergence limit" in result.stderr and
+          P + "linearized-backward-euler also refuses a step whose one linear solve raises the "
+          "incremental potential it linearises" in result.stderr,
+          f"linearised flag: {result.stderr!r}")
     print(f"OK: the hint's step {step} s runs symplectic Euler 2000 steps without diverging")
 
 

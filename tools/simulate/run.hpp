@@ -538,6 +538,12 @@ inline int exit_status(const Config& c, const Plan& p, const Outcome& o, bool fa
                    "than half the scale: it pushed points against the springs "
                    "(StepReport::contact_work, see docs/contact.md#limits)\n",
                    o.failed_contact_work);
+    else if (p.kind == massspring::IntegratorKind::LinearizedBackwardEuler)
+      std::fprintf(stderr,
+                   "massspring-simulate: %s also refuses a step whose one linear solve raises the "
+                   "incremental potential it linearises (its linear model failed, "
+                   "StepReport::blew_up); backward-euler (Newton) or a smaller --dt holds it\n",
+                   p.integrator.c_str());
     print_hint();
     return kExitDiverged;
   }

@@ -68,8 +68,11 @@ struct BackwardEulerOptions {
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
   /// the step's start energy by more than energy_growth (S + S_c), S the scale taken at
   /// precompute() and S_c the colliders' (integrators/detail/energy_bound.hpp), is reported as
-  /// blown up (StepReport::blew_up) and not committed. Finite and >= 0; default 100; 0 turns the
-  /// check off. Costs two passes over the springs per step.
+  /// blown up (StepReport::blew_up) and not committed. So is a Linearized step without the
+  /// contact term that ends with its incremental potential higher than at x + h v by more than
+  /// 1e-6 S (EnergyBound::uphill(): its one linear solve went uphill). Finite and >= 0; default
+  /// 100; 0 turns both checks off. Costs two passes over the springs per step (two more for a
+  /// Linearized step).
   double energy_growth = 100;
 };
 
@@ -183,6 +186,11 @@ class BackwardEuler {
     // The linearised step with contact keeps its linear model: A and r at x + h v, the term's
     // targets updated at each iterate, x = x + h v + (A + W)^-1 (r + W (target - x - h v)).
     const int iterations = newton || contact_ ? options.iterations : 1;
+    // The linearised step without the contact term is one Newton step on the incremental
+    // potential phi from x + h v: when it ends with phi higher than there, its linear model
+    // failed; reported as a blow-up (EnergyBound::uphill()), nothing changed.
+    const bool check_model = !newton && !contact_ && potential_objective(system);
+    const double phi_guess = check_model ? double(objective(system, x_, moved_)) : 0.0;
     Scalar last_contact_residual = 0;
     for (int it = 0; it < iterations; ++it) {
       // ADMM converges linearly: with q the ratio of successive residuals, the iterate is within
@@ -223,6 +231,10 @@ class BackwardEuler {
                          : report.converged   ? Convergence::Converged
                                               : Convergence::NotConverged;
     if (has_potential) report.energy = double(objective(system, x_, moved_));
+    if (check_model && energy_bound_.uphill(phi_guess, double(objective(system, x_, moved_)))) {
+      report.blew_up = true;
+      return report;
+    }
     v_ = v0 + moved_ / h;
     // Friction was the contact term's, inside the solve: not applied a second time.
     detail::commit_step(system, x_, v_, h, report, energy_bound_, !contact_);

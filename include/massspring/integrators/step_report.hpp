@@ -52,8 +52,10 @@ struct StepReport {
   /// the start energy + energy_growth (S + S_c) (integrators/detail/energy_bound.hpp: an energy
   /// blow-up), or its collision response added more than S / 2 + S_c (`contact_work`: a
   /// response that pumps energy into the springs; on whenever energy_growth > 0), or a
-  /// DivergenceGuard found the total energy after the step beyond its limit. Nothing was
-  /// changed (the guard restores the state from before the step).
+  /// Linearized BackwardEuler step raised the incremental potential it linearises (its linear
+  /// model failed; EnergyBound::uphill()), or a DivergenceGuard found the total energy after the
+  /// step beyond its limit. Nothing was changed (the guard restores the state from before the
+  /// step).
   bool blew_up = false;
   /// @brief Surface contact (contact/response/surface_contact.hpp): the repulsion and collision
   /// impulses of this step, and the points its impact zones moved rigidly.

@@ -323,6 +323,11 @@ def run(parameters, bundle=None):
                             f"; in that step the contact response added "
                             f"{report.contact_work:.6g} J, more than half the scale "
                             "(StepReport.contact_work)")
+                    elif integrator == "linearized-backward-euler":
+                        result["message"] += (
+                            "; linearized-backward-euler also refuses a step whose one linear "
+                            "solve raises the incremental potential it linearises (its linear "
+                            "model failed)")
                 elif not report.contact_resolved:
                     result["message"] = (f"step {step}: surface contact left a crossing its "
                                          "rounds could not remove; stopped with the last good "

@@ -119,6 +119,20 @@ class EnergyBound {
   /// @brief The share of the energy scale S the collision response may add in one step.
   static constexpr double kContactShare = 0.5;
 
+  /// @brief True when a step that takes one linear solve towards the minimum of its incremental
+  /// potential phi (linearised BackwardEuler without the contact term) ended with phi higher than
+  /// at the step's starting guess by more than kModelShare S: its linear model failed (an
+  /// indefinite matrix, or a step far beyond the springs' curvature) and the end state is not
+  /// implicit Euler's. phi_guess, phi_end [J]. False when the check is off.
+  [[nodiscard]] bool uphill(double phi_guess, double phi_end) const {
+    if (!(growth_ > 0)) return false;
+    return !(phi_end - phi_guess <= kModelShare * scale_);  // NaN included
+  }
+
+  /// @brief The share of S by which a linearised step may raise its incremental potential
+  /// (rounding is about 1e-15 of it).
+  static constexpr double kModelShare = 1e-6;
+
   /// @brief The most energy [J] a step from the system's current state may end with:
   /// E(x0, v0) + growth (S + S_c); +infinity when the check is off.
   [[nodiscard]] double limit(const System& system) const {
