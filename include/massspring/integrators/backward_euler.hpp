@@ -188,8 +188,10 @@ class BackwardEuler {
     const int iterations = newton || contact_ ? options.iterations : 1;
     // The linearised step without the contact term is one Newton step on the incremental
     // potential phi from x + h v: when it ends with phi higher than there, its linear model
-    // failed; reported as a blow-up (EnergyBound::uphill()), nothing changed.
-    const bool check_model = !newton && !contact_ && potential_objective(system);
+    // failed; reported as a blow-up (EnergyBound::uphill()), nothing changed. Not evaluated
+    // when the bound is off.
+    const bool check_model =
+        energy_bound_.on() && !newton && !contact_ && potential_objective(system);
     const double phi_guess = check_model ? double(objective(system, x_, moved_)) : 0.0;
     Scalar last_contact_residual = 0;
     for (int it = 0; it < iterations; ++it) {

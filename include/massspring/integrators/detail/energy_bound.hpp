@@ -129,6 +129,9 @@ class EnergyBound {
     return !(phi_end - phi_guess <= kModelShare * scale_);  // NaN included
   }
 
+  /// @brief True when the checks are on (growth > 0 and a finite scale at reset()).
+  [[nodiscard]] bool on() const { return growth_ > 0; }
+
   /// @brief The share of S by which a linearised step may raise its incremental potential
   /// (rounding is about 1e-15 of it).
   static constexpr double kModelShare = 1e-6;
