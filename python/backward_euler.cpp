@@ -22,9 +22,10 @@ void bind_backward_euler(py::module_& m) {
                      "Newton: stop when max |dx| <= tolerance (1 + max |x|).")
       .def_readwrite("line_search", &Options::line_search, "Newton: backtracking line search.")
       .def_readwrite("contact_weight", &Options::contact_weight,
-                     "Weight alpha of contact and friction inside the solve: alpha sqrt(m (m + "
-                     "h^2 k)) per point, k its springs' summed stiffness (default 1, which suits "
-                     "dt = 1/30; 0: at the end of the step only).");
+                     "Weight alpha of contact and friction inside the solve, the colliders' and "
+                     "(with self-collision) the surface's own: alpha sqrt(m (m + h^2 k)) per "
+                     "point, k its springs' summed stiffness (default 1, which suits dt = 1/30; "
+                     "0: at the end of the step only).");
   def_energy_growth(o);
 
   py::class_<Solver> c(m, "BackwardEuler",

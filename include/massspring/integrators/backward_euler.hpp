@@ -16,6 +16,7 @@
 #include "massspring/integrators/detail/contact_dual.hpp"
 #include "massspring/integrators/detail/energy_bound.hpp"
 #include "massspring/integrators/detail/jacobian_assembly.hpp"
+#include "massspring/integrators/detail/self_contact_term.hpp"
 #include "massspring/integrators/step_report.hpp"
 #include "massspring/storage/linear_solver.hpp"
 #include "massspring/system/mass_spring_system.hpp"
@@ -59,11 +60,15 @@ struct BackwardEulerOptions {
   /// over the step) and u_i its scaled dual variable, updated at every iterate and kept from step
   /// to step (the ADMM term of FastMassSpring: local_global/contact_projection.hpp). Converged,
   /// the step is implicit Euler with Signorini's condition and Coulomb's law; alpha sets how fast
-  /// the dual converges, not where. Newton's convergence then also asks ADMM's residuals,
-  /// max_i |x_i - z_i| and the change of z_i over the iteration, divided by 1 - q (q the ratio of
-  /// successive residuals: the distance to the limit of a linear rate), to be <= tolerance
-  /// (1 + max |x|); Linearized solves its linear model with the term `iterations` times
-  /// at most, to the same test.
+  /// the dual converges, not where. With the system's self-collision on (and a surface), the
+  /// term also keeps the surface's close pairs apart, P = P_colliders o P_self
+  /// (detail/self_contact_term.hpp: point-triangle and edge-edge pairs, gathered at the step's
+  /// start and again when an iterate outgrows them), on every point such a pair moves; the
+  /// end-of-step surface pass stays the guarantee of no crossing. Newton's convergence then also
+  /// asks ADMM's residuals, max_i |x_i - z_i| and the change of z_i over the iteration, divided by
+  /// 1 - q (q the ratio of successive residuals: the distance to the limit of a linear rate), to be
+  /// <= tolerance (1 + max |x|); Linearized solves its linear model with the term `iterations`
+  /// times at most, to the same test.
   Scalar contact_weight = Scalar(1);
   /// @brief A step whose end state's energy (kinetic of the free points plus potential) exceeds
   /// the step's start energy by more than energy_growth (S + S_c), S the scale taken at
@@ -127,6 +132,8 @@ class BackwardEuler {
     rhs_.setZero(n, 3);
     touches_.assign(std::size_t(n), 0);
     edge_distance_.setZero(n);
+    correction_.setZero(n, 3);
+    probe_.setZero(n, 3);
     setup(system);
     detail::require_number("BackwardEuler", "energy_growth", options.energy_growth, false);
     energy_bound_.reset(system, options.energy_growth);
@@ -157,13 +164,18 @@ class BackwardEuler {
     if (assembly_.stale(system)) {
       setup(system);
       report.refactorized = true;
+    } else if (wants_self_contact(system) != self_contact_.built() ||
+               (self_contact_.built() && !self_contact_.same_surface(system.surface()))) {
+      build_self_contact(system);  // self-collision or the surface changed: allocates
     }
     const Scalar h = dt_;
     const PointsType& x0 = system.positions();
     const PointsType& v0 = system.velocities();
     const bool newton = options.mode == BackwardEulerMode::Newton;
     const bool has_potential = newton && options.line_search && potential_objective(system);
-    contact_ = options.contact_weight > 0 && !system.colliders().empty();
+    const bool self_contact =
+        options.contact_weight > 0 && self_contact_.built() && system.self_collision().has_value();
+    contact_ = options.contact_weight > 0 && (!system.colliders().empty() || self_contact);
     if (contact_) {
       system.colliders().begin_step(h);
       contact_weights(system);
@@ -182,6 +194,8 @@ class BackwardEuler {
       start_ = x_;
       start_moved_ = moved_;
     }
+    self_active_ = self_contact;
+    if (self_active_) self_contact_.prepare(system, x_.data());
 
     // The linearised step with contact keeps its linear model: A and r at x + h v, the term's
     // targets updated at each iterate, x = x + h v + (A + W)^-1 (r + W (target - x - h v)).
@@ -275,11 +289,29 @@ class BackwardEuler {
  private:
   void setup(const System& system) {
     assembly_.record(system);
+    build_self_contact(system);
     solver_.analyze(assembly_.matrix());
     symmetric_ = jacobians_symmetric(system);
     drag_ = 0;
     for (const auto& term : system.forces())
       if (term->linear_damping) drag_ += term->linear_damping_coefficient();
+  }
+
+  /// @brief Whether the system asks for self-contact: self-collision on a surface.
+  static bool wants_self_contact(const System& system) {
+    return system.self_collision().has_value() && system.surface().rows() > 0;
+  }
+
+  /// @brief The self-contact term for the system's surface, pins and masses, or none (allocates).
+  void build_self_contact(const System& system) {
+    if (!wants_self_contact(system)) {
+      self_contact_.clear();
+      return;
+    }
+    const int n = system.num_points();
+    std::vector<int> identity(std::size_t(n), 0);
+    for (int i = 0; i < n; ++i) identity[std::size_t(i)] = i;
+    self_contact_.build(system, identity, identity, n);
   }
 
   /// @brief True when the incremental potential is an objective: every force has an energy or is
@@ -366,6 +398,16 @@ class BackwardEuler {
     const auto& pinned = assembly_.pinned_coordinates();
     const Scalar* x0 = system.positions().data();
     Scalar residual = 0;
+    // Self-contact's corrections at x + u, its pairs gathered again from there when x + u has
+    // left the motion they were gathered for.
+    const Scalar* shift = nullptr;
+    if (self_active_) {
+      probe_ = x_ + dual_;  // same size: no allocation
+      if (self_contact_.outgrown(probe_.data())) self_contact_.prepare(system, probe_.data());
+      if (self_contact_.active() &&
+          self_contact_.correct(x_.data(), dual_.data(), int(x_.rows()), correction_.data()))
+        shift = correction_.data();
+    }
     for (Eigen::Index i = 0; i < x_.rows(); ++i) {
       Scalar* u = dual_.data() + 3 * i;
       if (pinned[std::size_t(3 * i)]) {
@@ -376,9 +418,9 @@ class BackwardEuler {
       // The last iterate's z = target + u (x there when it touched nothing).
       const Scalar u_before[3] = {u[0], u[1], u[2]};
       const Scalar z_before[3] = {target[0] + u[0], target[1] + u[1], target[2] + u[2]};
-      const bool touches =
-          detail::contact_dual_update(system.colliders(), x0 + 3 * i, x_.data() + 3 * i, u, dt_,
-                                      target, Scalar(0), edge_distance_(i));
+      const bool touches = detail::contact_dual_update(
+          system.colliders(), x0 + 3 * i, x_.data() + 3 * i, u, dt_, target, Scalar(0),
+          edge_distance_(i), shift ? shift + 3 * i : nullptr);
       touches_[std::size_t(i)] = touches ? 1 : 0;
       for (int c = 0; c < 3; ++c) {
         residual = std::max(residual, std::abs(u[c] - u_before[c]));
@@ -449,6 +491,11 @@ class BackwardEuler {
   Vector<Scalar> weight_, new_weight_;  // w_i this step [kg]; scratch
   std::vector<char> touches_;
   Vector<Scalar> edge_distance_;  // detail::edge_distances() at the step's start, per point [m]
+  // Self-contact inside the term (options.contact_weight, the system's self-collision): its
+  // pairs, whether this step uses it, its corrections and the iterate x + u it was evaluated at.
+  detail::SelfContactTerm<Scalar> self_contact_;
+  bool self_active_ = false;
+  PointsType correction_, probe_;
   Vector<Scalar> dx_;
   detail::JacobianAssembly<System> assembly_;
   detail::EnergyBound<System> energy_bound_;  // S taken at precompute()

@@ -85,13 +85,18 @@ void edge_distances(const System& system, Vector<typename System::Scalar>& rho) 
 /// ColliderSet::clearance(x_start) less `edge_distance` when positive, else 0; a z closer than
 /// that to x_start is not projected (P would not move it). `edge_distance` [m]: P also keeps
 /// the point out of the band about each box's edges and each capsule's axis (the point's
-/// edge_distances()).
+/// edge_distances()). `shift` [m] (3 values, or null for none): moved first, z = P(x + u +
+/// shift): the point's self-contact correction (self_contact_term.hpp), so that P is the
+/// colliders' projection after self-contact's.
 template <class Scalar>
 bool contact_dual_update(const contact::ColliderSet<Scalar>& colliders, const Scalar* x_start,
                          const Scalar* x, Scalar* u, Scalar dt, Scalar* target,
-                         Scalar clearance2 = 0, Scalar edge_distance = 0) {
-  Scalar z[3] = {x[0] + u[0], x[1] + u[1], x[2] + u[2]};
-  const Scalar moved[3] = {z[0], z[1], z[2]};
+                         Scalar clearance2 = 0, Scalar edge_distance = 0,
+                         const Scalar* shift = nullptr) {
+  const Scalar moved[3] = {x[0] + u[0], x[1] + u[1], x[2] + u[2]};
+  Scalar z[3] = {moved[0], moved[1], moved[2]};
+  if (shift)
+    for (int c = 0; c < 3; ++c) z[c] += shift[c];
   const Scalar d[3] = {z[0] - x_start[0], z[1] - x_start[1], z[2] - x_start[2]};
   if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < clearance2))
     colliders.project(x_start, z, dt, edge_distance);
