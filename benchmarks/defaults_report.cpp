@@ -312,7 +312,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: defaults_report [--scene NAME|all] [--integrator "
                    "fast-mass-spring|backward-euler|all] [--seconds S] [--no-self-collision] "
-                   "[--no-surface]\n");
+                   "[--no-surface] [--contact-weight A] [--iterations N] [--acceleration "
+                   "none|chebyshev|anderson]\n");
       return 1;
     }
   }
