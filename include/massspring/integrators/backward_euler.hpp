@@ -164,9 +164,8 @@ class BackwardEuler {
     if (assembly_.stale(system)) {
       setup(system);
       report.refactorized = true;
-    } else if (wants_self_contact(system) != self_contact_.built() ||
-               (self_contact_.built() && !self_contact_.same_surface(system.surface()))) {
-      build_self_contact(system);  // self-collision or the surface changed: allocates
+    } else if (self_contact_.stale(system)) {
+      self_contact_.build(system);  // self-collision or the surface changed: allocates
     }
     const Scalar h = dt_;
     const PointsType& x0 = system.positions();
@@ -289,29 +288,12 @@ class BackwardEuler {
  private:
   void setup(const System& system) {
     assembly_.record(system);
-    build_self_contact(system);
+    self_contact_.build(system);  // off without self-collision on a surface
     solver_.analyze(assembly_.matrix());
     symmetric_ = jacobians_symmetric(system);
     drag_ = 0;
     for (const auto& term : system.forces())
       if (term->linear_damping) drag_ += term->linear_damping_coefficient();
-  }
-
-  /// @brief Whether the system asks for self-contact: self-collision on a surface.
-  static bool wants_self_contact(const System& system) {
-    return system.self_collision().has_value() && system.surface().rows() > 0;
-  }
-
-  /// @brief The self-contact term for the system's surface, pins and masses, or none (allocates).
-  void build_self_contact(const System& system) {
-    if (!wants_self_contact(system)) {
-      self_contact_.clear();
-      return;
-    }
-    const int n = system.num_points();
-    std::vector<int> identity(std::size_t(n), 0);
-    for (int i = 0; i < n; ++i) identity[std::size_t(i)] = i;
-    self_contact_.build(system, identity, identity, n);
   }
 
   /// @brief True when the incremental potential is an objective: every force has an energy or is

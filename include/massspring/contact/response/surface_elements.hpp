@@ -29,6 +29,7 @@
 
 #include "massspring/contact/aligned_box.hpp"
 #include "massspring/contact/colliders/colliders.hpp"
+#include "massspring/contact/distance/barycentric.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/contact/response/surface_contact_slot.hpp"
@@ -340,7 +341,7 @@ struct SurfaceElements {
       s.p = {pe.p[0], te.p[0], te.p[1], te.p[2]};
       const V3 xp = x(s.p[0]), xa = x(s.p[1]), xb = x(s.p[2]), xc = x(s.p[3]);
       const V3 c = closest_point_on_triangle<Scalar>(xp, xa, xb, xc);
-      const std::array<Scalar, 3> bary = barycentric(c, xa, xb, xc);
+      const std::array<Scalar, 3> bary = clamped_barycentric<Scalar>(c, xa, xb, xc);
       s.a = {1, -bary[0], -bary[1], -bary[2]};
       const V3 diff = xp - c;
       s.distance = diff.norm();
@@ -357,17 +358,6 @@ struct SurfaceElements {
       s.n = s.distance > 0 ? V3(diff / s.distance) : edge_normal(a1 - a0, b1 - b0);
     }
     return s;
-  }
-  static std::array<Scalar, 3> barycentric(const V3& c, const V3& a, const V3& b, const V3& cc) {
-    const V3 v0 = b - a, v1 = cc - a, v2 = c - a;
-    const Scalar d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1);
-    const Scalar d20 = v2.dot(v0), d21 = v2.dot(v1);
-    const Scalar den = d00 * d11 - d01 * d01;
-    if (!(den > 0)) return {1, 0, 0};
-    Scalar v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
-    v = std::clamp(v, Scalar(0), Scalar(1));
-    w = std::clamp(w, Scalar(0), Scalar(1) - v);
-    return {1 - v - w, v, w};
   }
   static V3 triangle_normal(const V3& a, const V3& b, const V3& c) {
     const V3 n = (b - a).cross(c - a);

@@ -65,6 +65,7 @@
 #include <vector>
 
 #include "massspring/contact/broad_phase/normal_cone_tree.hpp"
+#include "massspring/contact/distance/barycentric.hpp"
 #include "massspring/contact/distance/edge_edge.hpp"
 #include "massspring/contact/distance/point_triangle.hpp"
 #include "massspring/types.hpp"
@@ -129,6 +130,15 @@ class SelfContactTerm {
     built_ = true;
   }
 
+  /// @brief build() with every point its own row, in order (BackwardEuler's layout).
+  template <class System>
+  void build(const System& system) {
+    const int n = system.num_points();
+    std::vector<int> identity(std::size_t(n), 0);
+    for (int i = 0; i < n; ++i) identity[std::size_t(i)] = i;
+    build(system, identity, identity, n);
+  }
+
   /// @brief Off: no pairs, until build() again.
   void clear() {
     built_ = false;
@@ -142,6 +152,13 @@ class SelfContactTerm {
   [[nodiscard]] bool active() const { return active_; }
   /// @brief The pairs prepare() kept.
   [[nodiscard]] std::size_t pairs() const { return pairs_.size(); }
+  /// @brief Whether build() must run again: the system's self-collision on a surface is not
+  /// what build() saw (on or off), or its surface changed.
+  template <class System>
+  [[nodiscard]] bool stale(const System& system) const {
+    const bool wanted = system.self_collision().has_value() && system.surface().rows() > 0;
+    return wanted != built_ || (built_ && !same_surface(system.surface()));
+  }
   /// @brief Whether `triangles` is the surface build() was given.
   [[nodiscard]] bool same_surface(const Triangles& triangles) const {
     return triangles.rows() == surface_.rows() && triangles == surface_;
@@ -336,7 +353,7 @@ class SelfContactTerm {
     }
     if (q.kind == 0) {
       const V3 c = contact::closest_point_on_triangle<Scalar>(x[0], x[1], x[2], x[3]);
-      const std::array<Scalar, 3> b = barycentric(c, x[1], x[2], x[3]);
+      const std::array<Scalar, 3> b = contact::clamped_barycentric<Scalar>(c, x[1], x[2], x[3]);
       a = {1, -b[0], -b[1], -b[2]};
       return unsigned_gap(x[0] - c, n, gap);
     }
@@ -350,7 +367,7 @@ class SelfContactTerm {
   static bool interior_weights(int kind, const std::array<V3, 4>& x, std::array<Scalar, 4>& a) {
     if (kind == 0) {
       if (!over_face(x)) return false;
-      const std::array<Scalar, 3> b = plane_barycentric(x[0], x[1], x[2], x[3]);
+      const std::array<Scalar, 3> b = contact::plane_barycentric<Scalar>(x[0], x[1], x[2], x[3]);
       a = {1, -b[0], -b[1], -b[2]};
       return true;
     }
@@ -394,19 +411,8 @@ class SelfContactTerm {
   // three barycentric coordinates positive (unclamped: a point beside an edge, whose closest
   // point is on the edge, is not over the face).
   static bool over_face(const std::array<V3, 4>& x) {
-    const std::array<Scalar, 3> b = plane_barycentric(x[0], x[1], x[2], x[3]);
+    const std::array<Scalar, 3> b = contact::plane_barycentric<Scalar>(x[0], x[1], x[2], x[3]);
     return b[0] > 0 && b[1] > 0 && b[2] > 0;
-  }
-  // The barycentric coordinates in (p, q, r) of c's projection on their plane, not clamped;
-  // (1, 0, 0) for a degenerate triangle.
-  static std::array<Scalar, 3> plane_barycentric(const V3& c, const V3& p, const V3& q,
-                                                 const V3& r) {
-    const V3 u = q - p, v = r - p, w = c - p;
-    const Scalar uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), wu = w.dot(u), wv = w.dot(v);
-    const Scalar den = uu * vv - uv * uv;
-    if (!(den > 0)) return {1, 0, 0};
-    const Scalar s = (vv * wu - uv * wv) / den, t = (uu * wv - uv * wu) / den;
-    return {1 - s - t, s, t};
   }
   // Whether the edges (x[0], x[1]) and (x[2], x[3]) are not near parallel (kParallel) and their
   // lines' closest points are inside both, strictly (unclamped parameters).
@@ -424,18 +430,6 @@ class SelfContactTerm {
     t = (aa * bw - ab * aw) / den;
     return s > 0 && s < 1 && t > 0 && t < 1;
   }
-  // Barycentric coordinates of c (on the triangle) in (p, q, r), clamped to it.
-  static std::array<Scalar, 3> barycentric(const V3& c, const V3& p, const V3& q, const V3& r) {
-    const V3 u = q - p, v = r - p, w = c - p;
-    const Scalar uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), wu = w.dot(u), wv = w.dot(v);
-    const Scalar den = uu * vv - uv * uv;
-    if (!(den > 0)) return {1, 0, 0};
-    Scalar s = (vv * wu - uv * wv) / den, t = (uu * wv - uv * wu) / den;
-    s = std::clamp(s, Scalar(0), Scalar(1));
-    t = std::clamp(t, Scalar(0), Scalar(1) - s);
-    return {1 - s - t, s, t};
-  }
-
   // Adds the pair's moves for the change lambda of its relative displacement along n, with
   // friction; false when no point may move.
   bool project(const Pair& q, const std::array<V3, 4>& x, const std::array<Scalar, 4>& a,
