@@ -129,3 +129,74 @@ TEST_CASE("inelastic projection: a parting target is met exactly, a constraint o
   CHECK(r.violation == doctest::Approx(0.05));
   CHECK(y1(0, 1) == doctest::Approx(0.95));  // unmoved
 }
+
+TEST_CASE("inelastic projection: a constraint whose mobile weights are negligible is not swept, "
+          "however little it asks") {
+  // Point 0 is immobile with weight 1; the mobile point 1 carries a weight of 1e-17, as an
+  // element's far corner does when the contact is at its other end. Meeting the constraint
+  // would move point 1 by violation / 1e-17 (1.5e15 m for 1.5 cm).
+  Points<double> x0(3, 3);
+  x0 << 0, 0.01, 0, 0, 0, 0, 1, 0, 0;
+  Points<double> x1 = x0;
+  x1(0, 1) = -0.005;  // point 0 ends 1.5 cm lower than it should
+  Vector<double> w(3);
+  w << 0, 1, 0;
+  Constraint c;
+  c.p = {0, 1, 2, 2};
+  c.a = {1, -1e-17, -1 + 1e-17, 0};
+  c.n = {0, 1, 0};
+  Projection p;
+  p.add(c);
+  CHECK_FALSE(Projection::mobile(c, w));
+  std::vector<char> moved(3, 0);
+  const Points<double> before = x1;
+  const auto r = p.solve(w, x0, x1, 1e-12, 100, moved);
+  CHECK(x1 == before);
+  CHECK(r.immobile_violated);
+  CHECK(r.violation == doctest::Approx(0.015));
+  // A share of 1/512 is mobile: it is swept and met.
+  c.a = {1, -1.0 / 512, -1 + 1.0 / 512, 0};
+  CHECK(Projection::mobile(c, w));
+  Projection q;
+  q.add(c);
+  const auto s = q.solve(w, x0, x1, 1e-12, 100, moved);
+  CHECK(s.violation <= 1e-12);
+  CHECK_FALSE(s.immobile_violated);
+}
+
+TEST_CASE("inelastic projection: contradictory constraints stop as stalled, their motion bounded") {
+  // Point 1 (mobile) must rise 1 cm above immobile point 0 and stay 1 cm below immobile point 2,
+  // which ends level with point 0: no position meets both. Each sweep pushes point 1 up by the
+  // first and down by the second, by the same amounts once the multipliers are large, so the
+  // sweeps' motion never shrinks.
+  Points<double> x0(3, 3);
+  x0 << 0, 0, 0, 0, 0.5, 0, 0, 1, 0;
+  Points<double> x1 = x0;
+  x1(2, 1) = 0;  // point 2 comes down onto point 0
+  Vector<double> w(3);
+  w << 0, 1, 0;
+  Projection p;
+  p.add(between(1, 0, {0, 1, 0}, 0.01 - 0.5));  // y1 - y0 >= 0.01 at the end
+  p.add(between(2, 1, {0, 1, 0}, 0.01 - 0.5));  // y2 - y1 >= 0.01 at the end
+  std::vector<char> moved(3, 0);
+  const auto r = p.solve(w, x0, x1, 1e-12, 1000, moved);
+  CHECK(r.stalled);
+  CHECK(r.sweeps <= 3 * Projection::kStallSweeps);
+  // Each sweep ends with the second met (y1 = -0.01), the first short by 2 cm.
+  CHECK(r.violation == doctest::Approx(0.02));
+  CHECK(x1(1, 1) == doctest::Approx(-0.01));
+  CHECK(x1.row(0) == x0.row(0));
+  CHECK(x1(2, 1) == 0);
+
+  // Made consistent (point 2 stays 3 cm above point 0), the same pair is met without a stall.
+  Points<double> y1 = x0;
+  y1(2, 1) = 0.03;
+  Projection q;
+  q.add(between(1, 0, {0, 1, 0}, 0.01 - 0.5));
+  q.add(between(2, 1, {0, 1, 0}, 0.01 - 0.5));
+  const auto s = q.solve(w, x0, y1, 1e-12, 1000, moved);
+  CHECK_FALSE(s.stalled);
+  CHECK(s.violation <= 1e-12);
+  CHECK(y1(1, 1) >= 0.01 - 1e-12);
+  CHECK(y1(1, 1) <= 0.02 + 1e-12);
+}

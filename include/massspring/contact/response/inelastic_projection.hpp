@@ -25,6 +25,12 @@
 /// positive diagonal). Each update moves point k of constraint c by w_k a_ck delta n_c: linear
 /// momentum is kept, and an immobile point never moves. The multipliers are kept between calls,
 /// so constraints added later (Harmon's growing set) start from the solution of the earlier ones.
+///
+/// Two cases are left to the caller's next stage (the rigid impact zones) instead of being swept:
+/// a constraint whose mobile points carry a negligible share of its weights (meeting it would
+/// move them by the violation over that share), and constraints that contradict each other (the
+/// LCP has no solution: the multipliers grow without bound and the sweeps move the points back
+/// and forth by the same amount, which solve() detects as a stall).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -61,6 +67,14 @@ struct ProjectionResult {
   /// @brief True when a constraint that is violated beyond the tolerance has no mobile point:
   /// nothing the projection may move can satisfy it.
   bool immobile_violated = false;
+  /// @brief True when the sweeps stopped because InelasticProjection::kStallSweeps sweeps in a
+  /// row each moved the points as much as the sweep kStallSweeps before it, to a relative
+  /// InelasticProjection::kStallTolerance, in the mass norm (sum_k m_k |dx_k|^2): the sweeps
+  /// repeat a cycle, the constraints contradict each other (a point held above one element and
+  /// below another), and more sweeps only move the points back and forth. Converging sweeps move
+  /// the points less and less, though not steadily when constraints leave and join the active
+  /// set; they do not repeat a motion to a millionth.
+  bool stalled = false;
 };
 
 /// @brief The inelastic projection (see the file comment); its arrays keep their capacity.
@@ -104,32 +118,56 @@ class InelasticProjection {
     return g - c.target;
   }
 
+  /// @brief The least share of a constraint's weights, sum of |a_k| over its mobile points (out
+  /// of 2: each element's barycentric weights sum to 1), for the projection to move it. Below
+  /// it, cancelling a violation r would move a point by more than r / kLeastMobileShare; such a
+  /// constraint counts as having no mobile point (the rigid stage takes it).
+  static constexpr Scalar kLeastMobileShare = Scalar(1) / 1024;
+  /// @brief The lag [sweeps] at which a sweep's motion is compared with an earlier one, and the
+  /// number of sweeps in a row that must repeat it for solve() to stop (ProjectionResult::stalled).
+  static constexpr int kStallSweeps = 10;
+  /// @brief The relative tolerance of a repeated motion (ProjectionResult::stalled).
+  static constexpr double kStallTolerance = 1e-6;
+
+  /// @brief True when constraint c has a mobile share of at least kLeastMobileShare.
+  [[nodiscard]] static bool mobile(const Constraint& c, const Vector<Scalar>& w) {
+    Scalar share = 0;
+    for (int k = 0; k < 4; ++k)
+      if (w(c.p[std::size_t(k)]) > 0) share += std::abs(c.a[std::size_t(k)]);
+    return share >= kLeastMobileShare;
+  }
+
   /// @brief Projects x1 (see the file comment) by sweeps over the constraints until no
   /// constraint is violated by more than `tolerance` [m] and no sweep moves a point by more than
-  /// `tolerance`, or `max_sweeps` sweeps. `moved[i]` is set for each point moved.
+  /// `tolerance`, or `max_sweeps` sweeps, or the sweeps stall (ProjectionResult::stalled).
+  /// Constraints without a mobile share (mobile()) are left out. `moved[i]` is set for each
+  /// point moved.
   /// @param[in] w  inverse masses [1/kg] (0: immobile)
   /// @param[in] x0 start positions; @param[in,out] x1 end positions
   ProjectionResult<Scalar> solve(const Vector<Scalar>& w, const Points<Scalar>& x0,
                                  Points<Scalar>& x1, Scalar tolerance, int max_sweeps,
                                  std::vector<char>& moved) {
     ProjectionResult<Scalar> result;
+    std::array<Scalar, kStallSweeps> earlier{};  // the last sweeps' motions, by sweep % lag
+    int repeated = 0;  // consecutive sweeps whose motion repeated the one kStallSweeps before
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
       result.sweeps = sweep + 1;
-      Scalar largest_move = 0, worst = 0;
+      Scalar largest_move = 0, worst = 0, motion = 0;
       for (std::size_t ci = 0; ci < constraints_.size(); ++ci) {
         const Constraint& c = constraints_[ci];
+        if (!mobile(c, w)) continue;
         const Scalar r = -slack(c, x0, x1);  // > 0: violated
         Scalar den = 0;
         for (int k = 0; k < 4; ++k) {
           const Scalar a = c.a[std::size_t(k)];
           den += a * a * w(c.p[std::size_t(k)]);
         }
-        if (!(den > 0)) continue;
         const Scalar next = std::max(Scalar(0), lambda_[ci] + r / den);
         const Scalar delta = next - lambda_[ci];
         lambda_[ci] = next;
         worst = std::max(worst, r);
         if (delta == 0) continue;
+        motion += den * delta * delta;
         for (int k = 0; k < 4; ++k) {
           const int i = c.p[std::size_t(k)];
           const Scalar step = c.a[std::size_t(k)] * w(i) * delta;
@@ -140,17 +178,21 @@ class InelasticProjection {
         }
       }
       if (worst <= tolerance && largest_move <= tolerance) break;
+      Scalar& before = earlier[std::size_t(sweep % kStallSweeps)];
+      const bool repeats = sweep >= kStallSweeps && motion > 0 &&
+                           std::abs(motion - before) <= Scalar(kStallTolerance) * before;
+      repeated = repeats ? repeated + 1 : 0;
+      before = motion;
+      if (repeated >= kStallSweeps) {
+        result.stalled = true;
+        break;
+      }
     }
     result.violation = -std::numeric_limits<Scalar>::infinity();
     for (const Constraint& c : constraints_) {
       const Scalar r = -slack(c, x0, x1);
       result.violation = std::max(result.violation, r);
-      if (r > tolerance) {
-        bool mobile = false;
-        for (int k = 0; k < 4; ++k)
-          mobile = mobile || (c.a[std::size_t(k)] != 0 && w(c.p[std::size_t(k)]) > 0);
-        result.immobile_violated = result.immobile_violated || !mobile;
-      }
+      if (r > tolerance) result.immobile_violated = result.immobile_violated || !mobile(c, w);
     }
     if (constraints_.empty()) result.violation = 0;
     return result;
