@@ -58,7 +58,8 @@ TEST_CASE("inelastic projection: two equal masses head-on stop along the normal,
   CHECK(moved[1] == 1);
 }
 
-TEST_CASE("inelastic projection: a pinned point does not move, the other takes its normal velocity") {
+TEST_CASE(
+    "inelastic projection: a pinned point does not move, the other takes its normal velocity") {
   const double dt = 0.1;
   Points<double> x0(2, 3), v(2, 3);
   x0 << -1, 0, 0, 1, 0, 0;
@@ -104,8 +105,9 @@ TEST_CASE("inelastic projection: three equal masses in a row end with one normal
   CHECK((v1.colwise().sum() - v.colwise().sum()).norm() <= 1e-13);
 }
 
-TEST_CASE("inelastic projection: a parting target is met exactly, a constraint of immobile points "
-          "is reported") {
+TEST_CASE(
+    "inelastic projection: a parting target is met exactly, a constraint of immobile points "
+    "is reported") {
   Points<double> x0(2, 3);
   x0 << 0, 1, 0, 0, 0, 0;
   Points<double> x1 = x0;
@@ -130,8 +132,9 @@ TEST_CASE("inelastic projection: a parting target is met exactly, a constraint o
   CHECK(y1(0, 1) == doctest::Approx(0.95));  // unmoved
 }
 
-TEST_CASE("inelastic projection: a constraint whose mobile weights are negligible is not swept, "
-          "however little it asks") {
+TEST_CASE(
+    "inelastic projection: a constraint whose mobile weights are negligible is left to the rigid "
+    "zones, not swept") {
   // Point 0 is immobile with weight 1; the mobile point 1 carries a weight of 1e-17, as an
   // element's far corner does when the contact is at its other end. Meeting the constraint
   // would move point 1 by violation / 1e-17 (1.5e15 m for 1.5 cm).
